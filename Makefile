@@ -1,0 +1,41 @@
+# Two commands on a fresh machine: `make run` and `make test`.
+# Each creates .venv if it is missing and installs the package with pinned dependencies.
+PYTHON ?= python3
+VENV   ?= .venv
+BIN    := $(VENV)/bin
+CORES  ?= 2
+STAMP  := $(VENV)/.moorlife-installed
+
+.PHONY: run quick test bench report lint clean-results
+
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+
+$(STAMP): pyproject.toml constraints.txt | $(BIN)/python
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -c constraints.txt -e ".[test]"
+	touch $@
+
+## run: the default study at the paper's scale (271,728 h, 1,000 + 225 states, MS1-MS6)
+run: $(STAMP)
+	$(BIN)/snakemake --cores $(CORES)
+
+## quick: the same DAG on config/quick.yaml (a few years, tens of states, short records)
+quick: $(STAMP)
+	$(BIN)/snakemake --cores $(CORES) --configfile config/quick.yaml
+
+## test: the whole test suite (unit, peer and workflow tests)
+test: $(STAMP)
+	$(BIN)/python -m pytest -q
+
+## bench: peer-library benchmarks (installs the bench extra)
+bench: $(STAMP)
+	$(BIN)/python -m pip install --quiet -c constraints.txt -e ".[test,bench]"
+	for f in benchmarks/bench_*.py; do echo "== $$f"; $(BIN)/python $$f || exit 1; done
+
+## report: the HTML report of the last run
+report: $(STAMP)
+	$(BIN)/snakemake --cores $(CORES) --report report.html
+
+lint: $(STAMP)
+	$(BIN)/snakemake --lint

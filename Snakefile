@@ -1,0 +1,23 @@
+# moorlife: life-cycle fatigue of FOWT moorings (Barrera et al., Ocean Engineering 2019).
+# Table of contents only: the rules live in workflow/rules/<stage>.smk.
+from snakemake.utils import min_version
+
+min_version("9.0")
+
+
+configfile: "config/config.yaml"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/metocean.smk"
+include: "workflow/rules/selection.smk"
+include: "workflow/rules/hydro.smk"
+include: "workflow/rules/simulate.smk"
+include: "workflow/rules/lifecycle.smk"
+include: "workflow/rules/compare.smk"
+
+
+rule all:
+    input:
+        final_targets(),
+    default_target: True

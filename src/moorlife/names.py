@@ -1,0 +1,136 @@
+"""Dimension names, variable names, units and attributes, defined once.
+
+Every store in ``results/`` uses these names (see the output contract in the README).
+Directions are degrees, nautical convention, "coming from", clockwise from north.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "TIME",
+    "CASE",
+    "BIN",
+    "LINE",
+    "LINES",
+    "CURVES",
+    "METOCEAN_VARS",
+    "METOCEAN_ATTRS",
+    "SIM_LINE_VARS",
+    "SIM_SCALAR_VARS",
+    "SIM_ATTRS",
+    "GEV_VARS",
+    "attrs_for",
+]
+
+# dimensions
+TIME = "time"
+CASE = "case"
+BIN = "bin"
+LINE = "line"
+CURVE = "curve"
+OMEGA = "omega"
+DOF = "dof"
+HEADING = "heading"
+
+#: Mooring line labels. M2 points west (270 deg); M1 and M3 are at +-120 deg from it
+#: (M1 to the north-east, M3 to the south-east), as OC4 lines 1-3.
+LINES: tuple[str, ...] = ("M1", "M2", "M3")
+#: Fatigue curve families: S-N (DNVGL-OS-E301) and T-N (API RP 2SK).
+CURVES: tuple[str, ...] = ("sn", "tn")
+DOFS: tuple[str, ...] = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+
+#: The five sea-state variables, in the order used for the 5-D selection / RBF space.
+METOCEAN_VARS: tuple[str, ...] = ("wind_speed", "wind_dir", "hs", "tp", "wave_dir")
+#: Which of them are directions (compared on the circle).
+DIRECTION_VARS: frozenset[str] = frozenset({"wind_dir", "wave_dir"})
+
+_DIRECTION_COMMENT = "nautical convention: degrees clockwise from north, direction the wind or waves come from"
+
+METOCEAN_ATTRS: dict[str, dict[str, str]] = {
+    "hs": {
+        "units": "m",
+        "standard_name": "sea_surface_wave_significant_height",
+        "long_name": "significant wave height",
+    },
+    "tp": {
+        "units": "s",
+        "standard_name": "sea_surface_wave_period_at_variance_spectral_density_maximum",
+        "long_name": "peak wave period",
+    },
+    "wave_dir": {
+        "units": "degree",
+        "standard_name": "sea_surface_wave_from_direction",
+        "long_name": "wave direction",
+        "comment": _DIRECTION_COMMENT,
+    },
+    "wind_speed": {
+        "units": "m s-1",
+        "standard_name": "wind_speed",
+        "long_name": "wind speed at hub height",
+    },
+    "wind_dir": {
+        "units": "degree",
+        "standard_name": "wind_from_direction",
+        "long_name": "wind direction at hub height",
+        "comment": _DIRECTION_COMMENT,
+    },
+}
+
+#: Per-line outputs of one simulated sea state (dims: case or bin, line).
+SIM_LINE_VARS: tuple[str, ...] = ("tension_mpm", "damage_sn", "damage_tn")
+#: Scalar outputs of one simulated sea state (dim: case or bin).
+SIM_SCALAR_VARS: tuple[str, ...] = (
+    "surge_mpm",
+    "sway_mpm",
+    "heave_mpm",
+    "accel_mpm",
+    "accel_p90",
+    "accel_p95",
+    "accel_p99",
+)
+#: Variables whose most probable maximum comes from a GEV fit; each has a
+#: ``gev_corr_<name>`` companion with the fit quality (paper Table 5).
+GEV_VARS: tuple[str, ...] = ("surge_mpm", "sway_mpm", "heave_mpm", "tension_mpm", "accel_mpm")
+
+SIM_ATTRS: dict[str, dict[str, str]] = {
+    "surge_mpm": {"units": "m", "long_name": "most probable maximum of |surge| offset"},
+    "sway_mpm": {"units": "m", "long_name": "most probable maximum of |sway| offset"},
+    "heave_mpm": {"units": "m", "long_name": "most probable maximum of |heave| offset"},
+    "tension_mpm": {"units": "N", "long_name": "most probable maximum of fairlead tension"},
+    "damage_sn": {"units": "1", "long_name": "S-N (DNVGL-OS-E301) Miner damage per hour of sea state"},
+    "damage_tn": {"units": "1", "long_name": "T-N (API RP 2SK) Miner damage per hour of sea state"},
+    "accel_mpm": {"units": "m s-2", "long_name": "most probable maximum of nacelle acceleration"},
+    "accel_p90": {"units": "m s-2", "long_name": "90 % percentile of nacelle acceleration"},
+    "accel_p95": {"units": "m s-2", "long_name": "95 % percentile of nacelle acceleration"},
+    "accel_p99": {"units": "m s-2", "long_name": "99 % percentile of nacelle acceleration"},
+}
+for _name in GEV_VARS:
+    SIM_ATTRS[f"gev_corr_{_name}"] = {
+        "units": "1",
+        "long_name": f"correlation of empirical and GEV-fitted distribution of maxima ({_name})",
+    }
+
+
+def attrs_for(name: str) -> dict[str, str]:
+    """Return the CF-style attributes of a contract variable.
+
+    Parameters
+    ----------
+    name : str
+        A metocean or simulation variable name.
+
+    Returns
+    -------
+    dict
+        A copy of its attributes (at least ``units``).
+
+    Raises
+    ------
+    KeyError
+        If the name is not part of the output contract.
+    """
+    if name in METOCEAN_ATTRS:
+        return dict(METOCEAN_ATTRS[name])
+    if name in SIM_ATTRS:
+        return dict(SIM_ATTRS[name])
+    raise KeyError(f"{name!r} is not a contract variable")
