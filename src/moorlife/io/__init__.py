@@ -19,7 +19,10 @@ import pandas as pd
 import xarray as xr
 import yaml
 
+from moorlife.io.logs import log_to
+
 __all__ = [
+    "log_to",
     "COMPLETE_ATTR",
     "IncompleteStoreError",
     "write_zarr",

@@ -1,0 +1,31 @@
+# Helpers shared by every stage: config validation, the mooring-system table, targets.
+import os
+
+from moorlife.config import validate_config
+from moorlife.io import read_mooring_systems, read_yaml
+
+# Validate before any work: unknown keys, wrong types and bad values stop here, naming the key.
+_cfg_sources = ", ".join(str(f) for f in workflow.configfiles) or "config"
+config.update(
+    validate_config(
+        config, read_yaml(workflow.source_path("../schemas/config.schema.yaml")), _cfg_sources
+    )
+)
+MOORING = read_mooring_systems(config["mooring_systems"])
+MS_IDS = list(MOORING.index)
+
+
+wildcard_constraints:
+    ms="|".join(MS_IDS),
+
+
+def mooring_row(ms):
+    """The mooring-system table row of one system, as a plain dict (a rule param)."""
+    return {k: (v.item() if hasattr(v, "item") else v) for k, v in MOORING.loc[ms].items()}
+
+
+def final_targets():
+    """What `snakemake` (rule all) builds: every stage that exists, for every system."""
+    return [
+        "results/metocean/hindcast.zarr",
+    ]

@@ -1,0 +1,1 @@
+# Stage 'metocean': rules are added when the stage lands (see the issue tracker).

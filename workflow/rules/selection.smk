@@ -1,0 +1,1 @@
+# Stage 'selection': rules are added when the stage lands (see the issue tracker).
