@@ -32,6 +32,7 @@ __all__ = [
     "read_mooring_systems",
     "promote",
     "partial_path",
+    "storable",
 ]
 
 #: Root attribute set last on every store this package writes.
@@ -68,6 +69,18 @@ def promote(partial: str | os.PathLike[str], output: str | os.PathLike[str]) -> 
     return dst
 
 
+def storable(ds: xr.Dataset) -> xr.Dataset:
+    """Fixed-width unicode variables become variable-length strings.
+
+    Zarr 3 has no specification for numpy's fixed-width ``<U`` dtype (it warns and other
+    readers may fail); variable-length UTF-8 strings are specified.
+    """
+    fix = {k: v.astype(object) for k, v in ds.variables.items() if v.dtype.kind == "U"}
+    return ds.assign_coords({k: v for k, v in fix.items() if k in ds.coords}).assign(
+        {k: v for k, v in fix.items() if k not in ds.coords}
+    )
+
+
 def _mark_complete(path: Path) -> None:
     import zarr
 
@@ -98,7 +111,7 @@ def write_zarr(
     dst.parent.mkdir(parents=True, exist_ok=True)
     tmp = dst.parent / f".{dst.name}.tmp-{uuid.uuid4().hex[:8]}"
     try:
-        ds.to_zarr(tmp, mode="w", encoding=dict(encoding or {}), **ZARR_KW)
+        storable(ds).to_zarr(tmp, mode="w", encoding=dict(encoding or {}), **ZARR_KW)
         _mark_complete(tmp)
         promote(tmp, dst)
     finally:

@@ -1,0 +1,309 @@
+"""Dask fan-out of a pure per-case function into a resumable Zarr store.
+
+The driver (the process that calls :func:`map_cases`) is the only writer. Cases are cut into
+batches of ``batch_size``; each batch is one Dask task. Finished batches are written into a
+*partial* store outside the declared output (:func:`moorlife.io.partial_path`), one region per
+batch, aligned with the store's chunks, followed by the batch's done flag. The store records a
+fingerprint of everything that determines the numbers; a rerun with the same fingerprint
+computes only the missing batches, a different one starts afresh. When every batch is done the
+store is flagged complete and renamed into place.
+
+The cluster is either a :class:`distributed.LocalCluster` sized from the rule's threads (one
+single-threaded worker process per thread, BLAS pinned to one thread, bound to 127.0.0.1), or an
+existing scheduler named by the ``DASK_SCHEDULER_ADDRESS`` environment variable. The address is
+read from the environment, not from the config, so changing it reruns nothing.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import logging
+import os
+import shutil
+import time
+import uuid
+from collections.abc import Callable, Iterator, Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from moorlife import io as mio
+from moorlife import names
+
+__all__ = [
+    "BLAS_ENV",
+    "SCHEDULER_ENV",
+    "pin_blas_threads",
+    "dask_client",
+    "batch_slices",
+    "dataset_digest",
+    "map_cases",
+]
+
+SCHEDULER_ENV = "DASK_SCHEDULER_ADDRESS"
+#: Environment variables that size BLAS / OpenMP thread pools; all set to 1 for workers.
+BLAS_ENV: tuple[str, ...] = (
+    "OMP_NUM_THREADS",
+    "OPENBLAS_NUM_THREADS",
+    "MKL_NUM_THREADS",
+    "VECLIB_MAXIMUM_THREADS",
+    "NUMEXPR_NUM_THREADS",
+    "NUMBA_NUM_THREADS",
+)
+_DONE = "_batch_done"
+_BATCH_DIM = "_batch"
+_log = logging.getLogger("moorlife.parallel")
+
+
+def pin_blas_threads() -> dict[str, str]:
+    """Set every BLAS/OpenMP thread variable to 1 in this process's environment.
+
+    Snakemake exports ``OMP_NUM_THREADS`` equal to the rule's threads; worker processes
+    inherit the environment when they start, so this must run before the cluster starts.
+    Returns the previous values.
+    """
+    old = {k: os.environ.get(k, "") for k in BLAS_ENV}
+    os.environ.update({k: "1" for k in BLAS_ENV})
+    return old
+
+
+@contextlib.contextmanager
+def dask_client(threads: int = 1, *, address: str | None = None) -> Iterator[Any]:
+    """A :class:`distributed.Client` on an existing scheduler or a private LocalCluster.
+
+    Parameters
+    ----------
+    threads : int
+        Worker processes of the LocalCluster (one thread each). Ignored with a scheduler.
+    address : str, optional
+        Scheduler address; defaults to ``$DASK_SCHEDULER_ADDRESS``. Workers of an external
+        cluster must be able to ``import moorlife`` (install the package on them).
+    """
+    from distributed import Client, LocalCluster
+
+    address = address or os.environ.get(SCHEDULER_ENV) or None
+    if address:
+        _log.info("joining the Dask scheduler at %s", address)
+        with Client(address, timeout="60s") as client:
+            yield client
+        return
+    pin_blas_threads()
+    n = max(1, int(threads))
+    env = {k: "1" for k in BLAS_ENV}
+    with LocalCluster(
+        n_workers=n,
+        threads_per_worker=1,
+        processes=True,
+        host="127.0.0.1",
+        scheduler_port=0,
+        dashboard_address="127.0.0.1:0",
+        silence_logs=logging.WARNING,
+        env=env,
+    ) as cluster, Client(cluster) as client:
+        _log.info("LocalCluster with %d worker(s), dashboard %s", n, client.dashboard_link)
+        yield client
+
+
+def batch_slices(n: int, batch_size: int) -> list[slice]:
+    """Contiguous slices of at most ``batch_size`` covering ``range(n)``."""
+    if batch_size < 1:
+        raise ValueError(f"batch_size must be >= 1, got {batch_size}")
+    return [slice(a, min(a + batch_size, n)) for a in range(0, n, batch_size)]
+
+
+def dataset_digest(ds: xr.Dataset) -> str:
+    """SHA-256 of a Dataset's variable names, dims and values (attrs excluded)."""
+    h = hashlib.sha256()
+    for name in sorted(map(str, ds.variables)):
+        var = ds.variables[name]
+        h.update(name.encode())
+        h.update(repr(var.dims).encode())
+        values = np.asarray(var.values)
+        if values.dtype.kind in "OUS":
+            h.update("\x1f".join(map(str, values.ravel())).encode())
+        else:
+            h.update(np.ascontiguousarray(values).tobytes())
+    return h.hexdigest()
+
+
+def _run_batch(func: Callable[..., Mapping[str, np.ndarray]], kwargs: Mapping[str, Any],
+               case_vars: Mapping[str, np.ndarray], case_ids: np.ndarray) -> dict[str, np.ndarray]:
+    out = func(dict(case_vars), case_ids=case_ids, **kwargs)
+    return {k: np.asarray(v) for k, v in out.items()}
+
+
+def _dims_for(name: str, arr: np.ndarray, dim: str) -> tuple[str, ...]:
+    if arr.ndim == 1:
+        return (dim,)
+    if arr.ndim == 2 and arr.shape[1] == len(names.LINES):
+        return (dim, names.LINE)
+    return (dim, *(f"{name}_{i}" for i in range(1, arr.ndim)))
+
+
+def _template(first: Mapping[str, np.ndarray], cases: xr.Dataset, dim: str, n_batches: int) -> xr.Dataset:
+    n = cases.sizes[dim]
+    data: dict[str, Any] = {}
+    for name, arr in first.items():
+        dims = _dims_for(name, arr, dim)
+        shape = (n, *arr.shape[1:])
+        fill = np.nan if arr.dtype.kind == "f" else 0
+        attrs = names.SIM_ATTRS.get(name, {})
+        data[name] = xr.Variable(dims, np.full(shape, fill, dtype=arr.dtype), attrs=dict(attrs))
+    data[_DONE] = xr.Variable((_BATCH_DIM,), np.zeros(n_batches, dtype="int8"))
+    coords: dict[str, Any] = {dim: cases[dim].values}
+    if any(names.LINE in v.dims for v in data.values()):
+        coords[names.LINE] = list(names.LINES)
+    return xr.Dataset(data, coords=coords)
+
+
+def _open_partial(path: Path, fp: str) -> tuple[xr.Dataset | None, int | None]:
+    if not path.exists():
+        return None, None
+    try:
+        ds = xr.open_zarr(path, **mio.ZARR_KW)
+        if ds.attrs.get("fingerprint") != fp:
+            _log.info("partial store %s has another fingerprint: starting afresh", path)
+            raise ValueError("fingerprint")
+        return ds, int(ds.attrs["batch_size"])
+    except Exception:
+        shutil.rmtree(path, ignore_errors=True)
+        return None, None
+
+
+def _write_batch(path: Path, dim: str, sl: slice, b: int, result: Mapping[str, np.ndarray]) -> None:
+    import zarr
+
+    region = xr.Dataset({k: (_dims_for(k, v, dim), v) for k, v in result.items()})
+    region = region.drop_vars([c for c in region.coords], errors="ignore")
+    region.to_zarr(path, region={dim: sl, **{d: slice(None) for d in region.dims if d != dim}},
+                   mode="r+", **mio.ZARR_KW)
+    zarr.open_group(str(path), mode="r+")[_DONE][b] = 1
+
+
+def map_cases(
+    func: Callable[..., Mapping[str, np.ndarray]],
+    cases: xr.Dataset,
+    output: str | os.PathLike[str],
+    *,
+    dim: str,
+    func_kwargs: Mapping[str, Any],
+    batch_size: int,
+    fingerprint: str,
+    threads: int = 1,
+    log: logging.Logger | None = None,
+    client: Any | None = None,
+    attrs: Mapping[str, Any] | None = None,
+) -> xr.Dataset:
+    """Map a pure per-case function over the cases and write a complete Zarr store.
+
+    Parameters
+    ----------
+    func : callable
+        ``func(case_vars, case_ids=ids, **func_kwargs) -> {name: array (B, ...)}``, where
+        ``case_vars`` maps each data variable of ``cases`` with only ``dim`` to a ``(B,)``
+        array. It must be importable by the workers and depend only on its arguments.
+    cases : xarray.Dataset
+        The sea states, along ``dim`` (``case`` or ``bin``).
+    output : path-like
+        The declared output store.
+    dim : str
+        The case dimension.
+    func_kwargs : mapping
+        Static arguments, sent once to every worker.
+    batch_size : int
+        Cases per task. A partial store keeps the batch size it was started with.
+    fingerprint : str
+        Digest of everything that determines the numbers (config, inputs, code version).
+    threads : int
+        Workers of the LocalCluster when no scheduler address is set.
+    log : logging.Logger, optional
+        Progress goes here (the rule's log).
+    client : distributed.Client, optional
+        Use this client instead of creating one.
+    attrs : mapping, optional
+        Extra attributes of the final store.
+
+    Returns
+    -------
+    xarray.Dataset
+        The complete store, loaded: the outputs plus the case variables.
+    """
+    log = log or _log
+    out = Path(output)
+    part = mio.partial_path(out)
+    part.parent.mkdir(parents=True, exist_ok=True)
+    n = cases.sizes[dim]
+    ids = np.asarray(cases[dim].values)
+    case_names = [k for k, v in cases.data_vars.items() if v.dims == (dim,) and v.dtype.kind in "fiub"]
+    existing, stored_bs = _open_partial(part, fingerprint)
+    bs = stored_bs or int(batch_size)
+    slices = batch_slices(n, bs)
+    done = np.zeros(len(slices), dtype=bool)
+    if existing is not None:
+        done = np.asarray(existing[_DONE].values, dtype=bool)
+        log.info("resuming %s: %d of %d batches already done", part, int(done.sum()), len(slices))
+    todo = [b for b in range(len(slices)) if not done[b]]
+    t0 = time.perf_counter()
+
+    def _submit_all(cl: Any) -> None:
+        nonlocal existing
+        [kw] = cl.scatter([dict(func_kwargs)], broadcast=True, hash=False)
+        run = uuid.uuid4().hex[:12]
+        futures = {}
+        for b in todo:
+            sl = slices[b]
+            payload = {k: np.asarray(cases[k].values[sl]) for k in case_names}
+            fut = cl.submit(_run_batch, func, kw, payload, ids[sl], key=f"moorlife-{run}-b{b}", pure=False)
+            futures[fut] = b
+        from distributed import as_completed
+
+        failure: BaseException | None = None
+        for k, fut in enumerate(as_completed(futures), start=1):
+            b = futures[fut]
+            try:
+                result = fut.result()
+            except Exception as exc:  # keep writing the batches that do finish, then raise
+                log.error("batch %d/%d failed: %s", b + 1, len(slices), exc)
+                failure = failure or exc
+                continue
+            if existing is None:
+                tpl = _template(result, cases, dim, len(slices))
+                tpl.attrs.update({"fingerprint": fingerprint, "batch_size": bs})
+                enc = {v: {"chunks": (bs, *tpl[v].shape[1:])} for v in tpl.data_vars if v != _DONE}
+                enc[_DONE] = {"chunks": (1,)}
+                mio.storable(tpl).to_zarr(part, mode="w", encoding=enc, **mio.ZARR_KW)
+                existing = tpl
+            _write_batch(part, dim, slices[b], b, result)
+            log.info("batch %d/%d done (%d of %d this run, %.1f s)", b + 1, len(slices), k, len(todo),
+                     time.perf_counter() - t0)
+            fut.release()
+        if failure is not None:
+            raise failure
+
+    if todo:
+        if client is not None:
+            _submit_all(client)
+        else:
+            with dask_client(threads) as cl:
+                _submit_all(cl)
+    return _finalise(part, out, cases, dim, attrs or {})
+
+
+def _finalise(part: Path, out: Path, cases: xr.Dataset, dim: str, attrs: Mapping[str, Any]) -> xr.Dataset:
+    """Check every batch, add the case variables, flag complete, and rename into place."""
+    import zarr
+
+    group = zarr.open_group(str(part), mode="r+")
+    if not bool(np.all(group[_DONE][:] == 1)):
+        raise RuntimeError(f"{part}: not every batch is done; refusing to promote it")
+    extra = cases[[k for k, v in cases.data_vars.items() if v.dims == (dim,)]]
+    extra = extra.reset_coords(drop=True).drop_vars(dim, errors="ignore")
+    mio.storable(extra).to_zarr(part, mode="a", **mio.ZARR_KW)
+    group = zarr.open_group(str(part), mode="r+")
+    del group[_DONE]
+    group.attrs.update({**dict(attrs), mio.COMPLETE_ATTR: True})
+    mio.promote(part, out)
+    return mio.open_zarr(out)
