@@ -51,7 +51,7 @@ def validate_mooring_systems(df: pd.DataFrame, source: str = "mooring_systems.ts
             i = int(np.flatnonzero(bad)[0])
             raise ValueError(
                 f"{source}: row {i + 2} ({df['mooring_system'].iloc[i]}), column {col!r}: "
-                f"{df[col].iloc[i]!r} must be a positive number"
+                f"{df[col].iloc[i]} must be a positive number"
             )
         df[col] = values
     bad_chain = ~df["chain"].isin(["studless", "stud"])
