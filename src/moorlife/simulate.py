@@ -1,0 +1,1048 @@
+"""Coupled time-domain simulation of the floating platform, one sea state or a batch.
+
+The rigid platform obeys Cummins' equation about the SWL origin (``moorlife.conventions``)::
+
+    (M + A_inf) a = F_exc(t) + F_drift(t) - K q - C_r x_r + F_drag + F_thrust + F_moor
+    dx_r/dt = A_r x_r + B_r v                      (radiation memory, state space)
+
+with ``q = (surge, sway, heave, roll, pitch, yaw)`` (m, rad), ``K`` the hydrostatic stiffness
+with gravity, first-order excitation ``F_exc`` and Newman's slow drift ``F_drift`` synthesised
+for the whole record by FFT (:mod:`moorlife.environment`), Morison drag on the relative
+velocity of every strip, and the rotor thrust ``T = 0.5 rho_a A Ct(v) v^2`` of the filtered
+relative wind ``v`` (a notch removes the pitch band) applied at the hub along the wind (nacelle
+aligned with the wind). The mooring is a separate model (quasi-static surface or dynamic
+lumped-mass lines, :mod:`moorlife.mooring`) advanced once per step from the fairlead positions
+and velocities; its fairlead forces drive the platform over the next step (explicit partitioned
+coupling, lag ``dt``; the platform's own states use classical Runge-Kutta 4 with forcing
+linearly interpolated at mid-step). The whole batch is advanced by one Numba kernel per step.
+
+Design notes
+------------
+* Loads use linearised kinematics (small rotations): strip and hub velocities are
+  ``v + omega x p`` with the body-frame position ``p``; the fairleads use the exact rotation.
+* Wave kinematics for drag are evaluated at the strips' mean positions (first-order).
+* The kept record starts after ``transient``; statistics use only the kept part.
+* A batch is bit-identical to its cases run alone: every random stream comes from
+  ``case_rng(seed, mooring_system, case_id)`` and the kernel treats cases independently.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numba
+import numpy as np
+import scipy.linalg
+
+from moorlife import environment as env
+from moorlife import names
+
+__all__ = [
+    "ModelInputs",
+    "Forcing",
+    "Record",
+    "EXTRA_SCALAR_VARS",
+    "EXTRA_LINE_VARS",
+    "EXTRA_ATTRS",
+    "TIMESERIES_VARS",
+    "output_attrs",
+    "prepare_model",
+    "build_model",
+    "build_forcing",
+    "integrate",
+    "summarise",
+    "simulate_batch",
+    "rotation_matrix",
+    "frequency_response",
+    "linear_natural_periods",
+    "static_offset",
+]
+
+#: Extra scalar outputs per case (beyond ``names.SIM_SCALAR_VARS``).
+EXTRA_SCALAR_VARS: tuple[str, ...] = (
+    "surge_mean",
+    "sway_mean",
+    "heave_mean",
+    "pitch_mean",
+    "surge_std",
+    "pitch_mpm",
+    "offset_max",
+)
+#: Extra per-line outputs per case.
+EXTRA_LINE_VARS: tuple[str, ...] = ("tension_mean", "tension_std", "tension_max")
+EXTRA_ATTRS: dict[str, dict[str, str]] = {
+    "surge_mean": {"units": "m", "long_name": "mean surge offset"},
+    "sway_mean": {"units": "m", "long_name": "mean sway offset"},
+    "heave_mean": {"units": "m", "long_name": "mean heave offset"},
+    "pitch_mean": {"units": "deg", "long_name": "mean pitch angle"},
+    "surge_std": {"units": "m", "long_name": "standard deviation of surge"},
+    "pitch_mpm": {"units": "deg", "long_name": "most probable maximum of |pitch|"},
+    "offset_max": {"units": "m", "long_name": "largest horizontal offset in the record"},
+    "tension_mean": {"units": "N", "long_name": "mean fairlead tension"},
+    "tension_std": {"units": "N", "long_name": "standard deviation of fairlead tension"},
+    "tension_max": {"units": "N", "long_name": "largest fairlead tension in the record"},
+    "gev_corr_pitch_mpm": {"units": "1", "long_name": "GEV fit correlation (pitch_mpm)"},
+}
+#: Time series returned when ``simulation.keep_timeseries`` is true: (B, nt) or (B, 3, nt).
+TIMESERIES_VARS: tuple[str, ...] = (
+    "ts_surge", "ts_sway", "ts_heave", "ts_roll", "ts_pitch", "ts_yaw", "ts_accel", "ts_tension",
+)
+
+
+def output_attrs(name: str) -> dict[str, str]:
+    """Attributes of any output of :func:`simulate_batch` (contract or extra)."""
+    if name in names.SIM_ATTRS:
+        return dict(names.SIM_ATTRS[name])
+    if name in EXTRA_ATTRS:
+        return dict(EXTRA_ATTRS[name])
+    if name.startswith("ts_"):
+        units = {"ts_tension": "N", "ts_accel": "m s-2"}.get(name, "rad" if name[3:] in ("roll", "pitch", "yaw") else "m")
+        return {"units": units, "long_name": f"time series of {name[3:]} after the transient"}
+    raise KeyError(f"{name!r} is not an output of simulate_batch")
+
+
+# --------------------------------------------------------------------------------------
+# model inputs
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ModelInputs:
+    """Everything the integrator needs for one mooring system (picklable, arrays only).
+
+    Attributes
+    ----------
+    mass : (6, 6)
+        Rigid-body mass plus infinite-frequency added mass about the origin, kg / kg m / kg m2.
+    stiffness : (6, 6)
+        Hydrostatic restoring including gravity, N/m, N, N m/rad.
+    damping : (6, 6)
+        Extra linear damping (zero unless configured), N s/m ...
+    rad_a, rad_b, rad_c : (nr, nr), (nr, 6), (6, nr)
+        Radiation state space: ``dx/dt = rad_a x + rad_b v``, force ``-rad_c x``.
+    omega : (nw,)
+        BEM frequencies, rad/s.
+    headings : (nh,)
+        BEM propagation angles, rad, increasing.
+    excitation : (nw, nh, 6) complex
+        First-order excitation per metre of amplitude, ``exp(-i omega t)`` convention.
+    drift : (nw, nh, 6)
+        Mean drift force per squared metre of amplitude (Newman), N/m2.
+    strip_pos, strip_axis : (ns, 3)
+        Morison strip centres (m, body frame = global at rest) and unit axes.
+    strip_cdn, strip_cda : (ns,)
+        Normal drag factor ``0.5 rho Cd D L`` (kg/m) and axial (heave-plate) factor
+        ``0.5 rho Cd_ax pi D^2 / 4`` (kg/m).
+    hub : (3,)
+        Hub position in the body frame, m.
+    thrust_speed, thrust_force : (nv,)
+        Tabulated thrust (N) against relative wind speed (m/s), ramps included.
+    filt_a, filt_b, filt_c, filt_d : arrays
+        Continuous state space of the pitch-band filter on v_rel (SISO).
+    fairleads : (3, 3)
+        Fairlead positions in the body frame (line, xyz), m.
+    depth, rho, gravity : float
+        Water depth (m), sea-water density, gravity.
+    mooring_kind : str
+        ``"quasistatic"``, ``"dynamic"`` (models of :mod:`moorlife.mooring`) or ``"linear"``
+        (``mooring_stiffness`` about the origin; verification only, no line tensions).
+    mooring_stiffness : (6, 6)
+        Linear mooring stiffness used by ``"linear"`` and by :func:`linear_natural_periods`.
+    mooring_args : tuple
+        ``(props, layout, cfg)`` passed to ``moorlife.mooring.make_mooring``.
+    line_info : dict
+        ``link_diameter`` (m), ``mbs`` (N), ``chain`` of the lines (for fatigue).
+    """
+
+    mass: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+    rad_a: np.ndarray
+    rad_b: np.ndarray
+    rad_c: np.ndarray
+    omega: np.ndarray
+    headings: np.ndarray
+    excitation: np.ndarray
+    drift: np.ndarray
+    strip_pos: np.ndarray
+    strip_axis: np.ndarray
+    strip_cdn: np.ndarray
+    strip_cda: np.ndarray
+    hub: np.ndarray
+    thrust_speed: np.ndarray
+    thrust_force: np.ndarray
+    filt_a: np.ndarray
+    filt_b: np.ndarray
+    filt_c: np.ndarray
+    filt_d: np.ndarray
+    fairleads: np.ndarray
+    depth: float
+    rho: float
+    gravity: float
+    mooring_kind: str = "linear"
+    mooring_stiffness: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
+    mooring_args: tuple = ()
+    line_info: Mapping[str, Any] = field(default_factory=dict)
+
+
+def build_model(**kwargs: Any) -> ModelInputs:
+    """Build :class:`ModelInputs` from arrays, with checks and defaults for optional parts.
+
+    Missing optional parts: no radiation memory, no drift, no strips, no thrust, an identity
+    filter (pass-through), zero damping, no fairleads.
+    """
+    kw = dict(kwargs)
+    kw.setdefault("damping", np.zeros((6, 6)))
+    kw.setdefault("rad_a", np.zeros((0, 0)))
+    kw.setdefault("rad_b", np.zeros((0, 6)))
+    kw.setdefault("rad_c", np.zeros((6, 0)))
+    if "excitation" in kw:
+        kw.setdefault("drift", np.zeros(np.shape(kw["excitation"])))
+    kw.setdefault("strip_pos", np.zeros((0, 3)))
+    kw.setdefault("strip_axis", np.zeros((0, 3)))
+    kw.setdefault("strip_cdn", np.zeros(0))
+    kw.setdefault("strip_cda", np.zeros(0))
+    kw.setdefault("hub", np.array([0.0, 0.0, 90.0]))
+    kw.setdefault("thrust_speed", np.array([-1.0, 1.0]))
+    kw.setdefault("thrust_force", np.zeros(2))
+    kw.setdefault("filt_a", np.zeros((0, 0)))
+    kw.setdefault("filt_b", np.zeros((0, 1)))
+    kw.setdefault("filt_c", np.zeros((1, 0)))
+    kw.setdefault("filt_d", np.ones((1, 1)))
+    kw.setdefault("fairleads", np.zeros((3, 3)))
+    kw.setdefault("depth", 200.0)
+    kw.setdefault("rho", 1025.0)
+    kw.setdefault("gravity", env.G)
+    arrays = {k: (np.asarray(v, dtype=complex if k == "excitation" else float)
+                  if k not in ("mooring_kind", "mooring_args", "line_info", "depth", "rho", "gravity") else v)
+              for k, v in kw.items()}
+    m = ModelInputs(**arrays)
+    for key, shape in (("mass", (6, 6)), ("stiffness", (6, 6)), ("damping", (6, 6))):
+        if getattr(m, key).shape != shape:
+            raise ValueError(f"ModelInputs.{key}: expected shape {shape}, got {getattr(m, key).shape}")
+    nr = m.rad_a.shape[0]
+    if m.rad_b.shape != (nr, 6) or m.rad_c.shape != (6, nr):
+        raise ValueError(f"radiation state space: inconsistent shapes {m.rad_a.shape}, {m.rad_b.shape}, {m.rad_c.shape}")
+    nw, nh = m.omega.size, m.headings.size
+    if m.excitation.shape != (nw, nh, 6) or m.drift.shape != (nw, nh, 6):
+        raise ValueError(f"excitation/drift: expected ({nw}, {nh}, 6), got {m.excitation.shape}, {m.drift.shape}")
+    if np.any(np.diff(m.headings) <= 0):
+        raise ValueError("headings must increase strictly")
+    if m.mooring_kind not in ("linear", "quasistatic", "dynamic"):
+        raise ValueError(f"simulation.mooring_model = {m.mooring_kind!r}: expected 'quasistatic' or 'dynamic'")
+    return m
+
+
+# --------------------------------------------------------------------------------------
+# forcing
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Forcing:
+    """External forcing of a batch, sampled on the integration grid.
+
+    Attributes
+    ----------
+    grid : environment.RecordGrid
+    force : (B, n + 1, 6)
+        First-order plus slow-drift wave force at ``t_j = j dt``, N and N m.
+    wind : (B, n + 1)
+        Hub-height wind speed, m/s (zero: no wind).
+    wind_dir : (B, 2)
+        Unit vector of the wind's direction of travel (x, y).
+    kin_every : int
+        Kinematics are sampled every ``kin_every`` steps.
+    kinematics : (B, nk, ns, 3) float32
+        Undisturbed wave particle velocity at the strips' mean positions, m/s.
+    """
+
+    grid: env.RecordGrid
+    force: np.ndarray
+    wind: np.ndarray
+    wind_dir: np.ndarray
+    kin_every: int
+    kinematics: np.ndarray
+
+
+def _interp_heading(table: np.ndarray, headings: np.ndarray, theta: float) -> np.ndarray:
+    """Linear interpolation of ``table (nw, nh, 6)`` at propagation angle ``theta`` (periodic)."""
+    nh = headings.size
+    if nh == 1:
+        return table[:, 0, :]
+    span = headings[-1] - headings[0]
+    periodic = span >= 2 * np.pi - 1e-6 or abs(span + (headings[1] - headings[0]) - 2 * np.pi) < 1e-6
+    th = theta
+    if periodic:
+        th = headings[0] + (theta - headings[0]) % (2 * np.pi)
+        hh = np.concatenate([headings, [headings[0] + 2 * np.pi]])
+        tt = np.concatenate([table, table[:, :1, :]], axis=1)
+        if hh[-2] >= hh[-1] - 1e-9:  # grid already closed (e.g. -pi..pi)
+            hh, tt = headings, table
+    else:
+        th = (theta - headings[0] + np.pi) % (2 * np.pi) - np.pi + headings[0]
+        if th < headings[0] - 1e-9 or th > headings[-1] + 1e-9:
+            raise ValueError(
+                f"wave propagation angle {np.rad2deg(theta):.1f} deg is outside the BEM heading range "
+                f"[{np.rad2deg(headings[0]):.1f}, {np.rad2deg(headings[-1]):.1f}] deg"
+            )
+        hh, tt = headings, table
+    j = int(np.clip(np.searchsorted(hh, th) - 1, 0, hh.size - 2))
+    w = (th - hh[j]) / (hh[j + 1] - hh[j])
+    return (1 - w) * tt[:, j, :] + w * tt[:, j + 1, :]
+
+
+def _interp_omega(values: np.ndarray, omega: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """Interpolate ``values (nw, 6)`` (complex or real) to ``target`` rad/s; zero outside."""
+    out = np.zeros((target.size, values.shape[1]), dtype=values.dtype)
+    for d in range(values.shape[1]):
+        if np.iscomplexobj(values):
+            out[:, d] = np.interp(target, omega, values[:, d].real, left=0, right=0) + 1j * np.interp(
+                target, omega, values[:, d].imag, left=0, right=0)
+        else:
+            out[:, d] = np.interp(target, omega, values[:, d], left=0, right=0)
+    return out
+
+
+def _drag_kinematics_tf(model: ModelInputs, k: np.ndarray, omega: np.ndarray, theta: float) -> np.ndarray:
+    """Velocity transfer functions at the strips, ``(nk, ns, 3)`` complex, per metre of amplitude."""
+    p = model.strip_pos
+    h = model.depth
+    c, s = math.cos(theta), math.sin(theta)
+    phase = np.exp(1j * k[:, None] * (p[None, :, 0] * c + p[None, :, 1] * s))
+    z = np.minimum(p[None, :, 2], 0.0)
+    kh = np.minimum(k[:, None] * h, 350.0)
+    kz = np.minimum(k[:, None] * (z + h), 350.0)
+    horiz = omega[:, None] * np.cosh(kz) / np.sinh(kh) * phase
+    vert = -1j * omega[:, None] * np.sinh(kz) / np.sinh(kh) * phase
+    wet = (p[None, :, 2] <= 0.0)
+    horiz = horiz * wet
+    vert = vert * wet
+    return np.stack([horiz * c, horiz * s, vert], axis=-1)
+
+
+def build_forcing(
+    model: ModelInputs,
+    grid: env.RecordGrid,
+    waves: env.WaveComponents,
+    wind: np.ndarray,
+    wind_dir_deg: np.ndarray,
+    *,
+    kin_every: int,
+    second_order: bool = True,
+) -> Forcing:
+    """Wave forces, wave kinematics and wind of a batch on the integration grid.
+
+    Parameters
+    ----------
+    model : ModelInputs
+    grid : environment.RecordGrid
+    waves : environment.WaveComponents
+        Complex amplitudes ``(B, nk)`` and propagation angles ``(B,)``.
+    wind : (B, n + 1)
+        Hub wind speed series, m/s.
+    wind_dir_deg : (B,)
+        Nautical direction the wind comes from, deg.
+    kin_every : int
+        Sampling of the drag kinematics, in steps.
+    second_order : bool
+        Add Newman's slow drift (difference-frequency part ``|a|^2`` of the drift envelope).
+
+    Returns
+    -------
+    Forcing
+    """
+    from moorlife.conventions import flow_vector
+
+    nb = waves.amplitude.shape[0]
+    n1 = grid.n_steps + 1
+    force = np.empty((nb, n1, 6))
+    k = env.wave_number(waves.omega, model.depth)
+    nkin = (grid.n_steps // kin_every) + 2
+    ns = model.strip_pos.shape[0]
+    kin = np.zeros((nb, nkin, ns, 3), dtype=np.float32)
+    for b in range(nb):
+        theta = float(waves.theta[b])
+        x = _interp_omega(_interp_heading(model.excitation, model.headings, theta), model.omega, waves.omega)
+        coeff = waves.amplitude[b][None, :] * x.T  # (6, nk)
+        force[b] = env.synthesise(coeff, waves.index, grid).T
+        if second_order:
+            d = _interp_omega(_interp_heading(model.drift, model.headings, theta), model.omega, waves.omega)
+            for dof in range(6):
+                pos = np.sqrt(np.maximum(d[:, dof], 0.0)) * waves.amplitude[b]
+                neg = np.sqrt(np.maximum(-d[:, dof], 0.0)) * waves.amplitude[b]
+                a_pos = env.synthesise_complex(pos[None, :], waves.index, grid)[0]
+                a_neg = env.synthesise_complex(neg[None, :], waves.index, grid)[0]
+                force[b, :, dof] += np.abs(a_pos) ** 2 - np.abs(a_neg) ** 2
+        if ns:
+            tf = _drag_kinematics_tf(model, k, waves.omega, theta)  # (nk, ns, 3)
+            coeff = (waves.amplitude[b][:, None, None] * tf).reshape(waves.omega.size, ns * 3).T
+            series = env.synthesise(coeff, waves.index, grid, n=grid.n_fft)  # (ns*3, n_fft)
+            idx = np.minimum(np.arange(nkin) * kin_every, grid.n_fft - 1)
+            kin[b] = series[:, idx].T.reshape(nkin, ns, 3).astype(np.float32)
+    wdir = flow_vector(np.asarray(wind_dir_deg, dtype=float)).reshape(nb, 2)
+    return Forcing(grid=grid, force=force, wind=np.asarray(wind, dtype=float), wind_dir=wdir,
+                   kin_every=int(kin_every), kinematics=kin)
+
+
+# --------------------------------------------------------------------------------------
+# the Numba kernel
+# --------------------------------------------------------------------------------------
+
+
+def rotation_matrix(rot: np.ndarray) -> np.ndarray:
+    """Rotation matrix ``Rz(yaw) Ry(pitch) Rx(roll)`` of ``rot (..., 3)`` rad -> ``(..., 3, 3)``."""
+    r = np.asarray(rot, dtype=float)
+    out = np.empty(r.shape[:-1] + (3, 3))
+    _rotation(r.reshape(-1, 3), out.reshape(-1, 3, 3))
+    return out
+
+
+@numba.njit(cache=True)
+def _rotation(rot, out):  # pragma: no cover - numba
+    for i in range(rot.shape[0]):
+        cr, sr = math.cos(rot[i, 0]), math.sin(rot[i, 0])
+        cp, sp = math.cos(rot[i, 1]), math.sin(rot[i, 1])
+        cy, sy = math.cos(rot[i, 2]), math.sin(rot[i, 2])
+        out[i, 0, 0] = cy * cp
+        out[i, 0, 1] = cy * sp * sr - sy * cr
+        out[i, 0, 2] = cy * sp * cr + sy * sr
+        out[i, 1, 0] = sy * cp
+        out[i, 1, 1] = sy * sp * sr + cy * cr
+        out[i, 1, 2] = sy * sp * cr - cy * sr
+        out[i, 2, 0] = -sp
+        out[i, 2, 1] = cp * sr
+        out[i, 2, 2] = cp * cr
+
+
+@numba.njit(cache=True)
+def _fairlead_motion(q, v, fair, r_out, v_out):  # pragma: no cover - numba
+    """Fairlead positions and velocities ``(B, 3, 3)`` from the platform state."""
+    nb = q.shape[0]
+    rot = np.empty((1, 3))
+    R = np.empty((1, 3, 3))
+    for b in range(nb):
+        rot[0, 0] = q[b, 3]
+        rot[0, 1] = q[b, 4]
+        rot[0, 2] = q[b, 5]
+        _rotation(rot, R)
+        for i in range(fair.shape[0]):
+            px = R[0, 0, 0] * fair[i, 0] + R[0, 0, 1] * fair[i, 1] + R[0, 0, 2] * fair[i, 2]
+            py = R[0, 1, 0] * fair[i, 0] + R[0, 1, 1] * fair[i, 1] + R[0, 1, 2] * fair[i, 2]
+            pz = R[0, 2, 0] * fair[i, 0] + R[0, 2, 1] * fair[i, 1] + R[0, 2, 2] * fair[i, 2]
+            r_out[b, i, 0] = q[b, 0] + px
+            r_out[b, i, 1] = q[b, 1] + py
+            r_out[b, i, 2] = q[b, 2] + pz
+            wx, wy, wz = v[b, 3], v[b, 4], v[b, 5]
+            v_out[b, i, 0] = v[b, 0] + wy * pz - wz * py
+            v_out[b, i, 1] = v[b, 1] + wz * px - wx * pz
+            v_out[b, i, 2] = v[b, 2] + wx * py - wy * px
+
+
+@numba.njit(cache=True)
+def _moor_generalised(q, fmoor, fair, out):  # pragma: no cover - numba
+    """6-DOF mooring load about the (displaced) origin from fairlead forces ``(B, 3, 3)``."""
+    nb = q.shape[0]
+    rot = np.empty((1, 3))
+    R = np.empty((1, 3, 3))
+    for b in range(nb):
+        rot[0, 0] = q[b, 3]
+        rot[0, 1] = q[b, 4]
+        rot[0, 2] = q[b, 5]
+        _rotation(rot, R)
+        for d in range(6):
+            out[b, d] = 0.0
+        for i in range(fair.shape[0]):
+            px = R[0, 0, 0] * fair[i, 0] + R[0, 0, 1] * fair[i, 1] + R[0, 0, 2] * fair[i, 2]
+            py = R[0, 1, 0] * fair[i, 0] + R[0, 1, 1] * fair[i, 1] + R[0, 1, 2] * fair[i, 2]
+            pz = R[0, 2, 0] * fair[i, 0] + R[0, 2, 1] * fair[i, 1] + R[0, 2, 2] * fair[i, 2]
+            fx, fy, fz = fmoor[b, i, 0], fmoor[b, i, 1], fmoor[b, i, 2]
+            out[b, 0] += fx
+            out[b, 1] += fy
+            out[b, 2] += fz
+            out[b, 3] += py * fz - pz * fy
+            out[b, 4] += pz * fx - px * fz
+            out[b, 5] += px * fy - py * fx
+
+
+@numba.njit(cache=True)
+def _rhs(b, t_frac, j, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
+         minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc,
+         spos, saxis, scdn, scda, hub, tv, tf, fa, fb, fc, fd,
+         dq, dv, dxr, dzf):  # pragma: no cover - numba
+    """Time derivative of one case's state at ``t = (j + t_frac) dt``."""
+    # external wave force, linear in time between samples j and j+1
+    F = np.empty(6)
+    for d in range(6):
+        F[d] = (1.0 - t_frac) * force[b, j, d] + t_frac * force[b, j + 1, d] + fmoor6[b, d]
+    # hydrostatics + gravity, linear damping
+    for d in range(6):
+        acc = 0.0
+        for e in range(6):
+            acc += K[d, e] * q[e] + D[d, e] * v[e]
+        F[d] -= acc
+    # radiation memory
+    nr = xr.shape[0]
+    for d in range(6):
+        acc = 0.0
+        for r in range(nr):
+            acc += rc[d, r] * xr[r]
+        F[d] -= acc
+    for r in range(nr):
+        acc = 0.0
+        for p in range(ra_ptr[r], ra_ptr[r + 1]):
+            acc += ra_val[p] * xr[ra_idx[p]]
+        for e in range(6):
+            acc += rb[r, e] * v[e]
+        dxr[r] = acc
+    # Morison drag on the relative velocity
+    ns = spos.shape[0]
+    if ns > 0:
+        tk = (j + t_frac) / kin_every
+        jk = int(tk)
+        wk = tk - jk
+        wx, wy, wz = v[3], v[4], v[5]
+        for s in range(ns):
+            px, py, pz = spos[s, 0], spos[s, 1], spos[s, 2]
+            ux = (1 - wk) * kin[b, jk, s, 0] + wk * kin[b, jk + 1, s, 0] - (v[0] + wy * pz - wz * py)
+            uy = (1 - wk) * kin[b, jk, s, 1] + wk * kin[b, jk + 1, s, 1] - (v[1] + wz * px - wx * pz)
+            uz = (1 - wk) * kin[b, jk, s, 2] + wk * kin[b, jk + 1, s, 2] - (v[2] + wx * py - wy * px)
+            ax, ay, az = saxis[s, 0], saxis[s, 1], saxis[s, 2]
+            ua = ux * ax + uy * ay + uz * az
+            nx, ny, nz = ux - ua * ax, uy - ua * ay, uz - ua * az
+            un = math.sqrt(nx * nx + ny * ny + nz * nz)
+            fx = scdn[s] * un * nx + scda[s] * abs(ua) * ua * ax
+            fy = scdn[s] * un * ny + scda[s] * abs(ua) * ua * ay
+            fz = scdn[s] * un * nz + scda[s] * abs(ua) * ua * az
+            F[0] += fx
+            F[1] += fy
+            F[2] += fz
+            F[3] += py * fz - pz * fy
+            F[4] += pz * fx - px * fz
+            F[5] += px * fy - py * fx
+    # thrust at the hub, along the wind, from the filtered relative wind
+    uw = (1.0 - t_frac) * wind[b, j] + t_frac * wind[b, j + 1]
+    ex, ey = wdir[b, 0], wdir[b, 1]
+    hx, hy, hz = hub[0], hub[1], hub[2]
+    vhx = v[0] + v[4] * hz - v[5] * hy
+    vhy = v[1] + v[5] * hx - v[3] * hz
+    vrel = uw - (vhx * ex + vhy * ey)
+    nf = zf.shape[0]
+    vf = fd[0, 0] * vrel
+    for r in range(nf):
+        vf += fc[0, r] * zf[r]
+    for r in range(nf):
+        acc = fb[r, 0] * vrel
+        for e in range(nf):
+            acc += fa[r, e] * zf[e]
+        dzf[r] = acc
+    thrust = np.interp(vf, tv, tf)
+    tx, ty = thrust * ex, thrust * ey
+    F[0] += tx
+    F[1] += ty
+    F[3] += -hz * ty
+    F[4] += hz * tx
+    F[5] += hx * ty - hy * tx
+    # accelerations
+    for d in range(6):
+        dq[d] = v[d]
+        acc = 0.0
+        for e in range(6):
+            acc += minv[d, e] * F[e]
+        dv[d] = acc
+
+
+@numba.njit(cache=True)
+def _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
+              minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc,
+              spos, saxis, scdn, scda, hub, tv, tf, fa, fb, fc, fd, acc_out):  # pragma: no cover
+    """Advance every case of the batch from step ``j`` to ``j + 1`` (classical RK4, in place).
+
+    ``acc_out (B, 6)`` receives the accelerations at the start of the step.
+    """
+    nb = q.shape[0]
+    nr = xr.shape[1]
+    nf = zf.shape[1]
+    ny = 12 + nr + nf
+    k = np.empty((4, ny))
+    y0 = np.empty(ny)
+    ys = np.empty(ny)
+    for b in range(nb):
+        for d in range(6):
+            y0[d] = q[b, d]
+            y0[6 + d] = v[b, d]
+        for r in range(nr):
+            y0[12 + r] = xr[b, r]
+        for r in range(nf):
+            y0[12 + nr + r] = zf[b, r]
+        for stage in range(4):
+            if stage == 0:
+                c, frac = 0.0, 0.0
+            elif stage == 3:
+                c, frac = 1.0, 1.0
+            else:
+                c, frac = 0.5, 0.5
+            for i in range(ny):
+                ys[i] = y0[i] + (c * dt * k[stage - 1, i] if stage > 0 else 0.0)
+            _rhs(b, frac, j, ys[0:6], ys[6:12], ys[12:12 + nr], ys[12 + nr:ny], fmoor6, force, wind, wdir,
+                 kin, kin_every, minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc, spos, saxis, scdn, scda, hub,
+                 tv, tf, fa, fb, fc, fd,
+                 k[stage, 0:6], k[stage, 6:12], k[stage, 12:12 + nr], k[stage, 12 + nr:ny])
+        for d in range(6):
+            acc_out[b, d] = k[0, 6 + d]
+        for i in range(ny):
+            y0[i] += dt / 6.0 * (k[0, i] + 2.0 * k[1, i] + 2.0 * k[2, i] + k[3, i])
+        for d in range(6):
+            q[b, d] = y0[d]
+            v[b, d] = y0[6 + d]
+        for r in range(nr):
+            xr[b, r] = y0[12 + r]
+        for r in range(nf):
+            zf[b, r] = y0[12 + nr + r]
+
+
+def _csr(a: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Compressed sparse rows of a dense matrix (exact zeros dropped)."""
+    nr = a.shape[0]
+    ptr = np.zeros(nr + 1, dtype=np.int64)
+    idx, val = [], []
+    for r in range(nr):
+        nz = np.flatnonzero(a[r])
+        idx.extend(nz.tolist())
+        val.extend(a[r, nz].tolist())
+        ptr[r + 1] = len(idx)
+    return ptr, np.asarray(idx, dtype=np.int64), np.asarray(val, dtype=float)
+
+
+# --------------------------------------------------------------------------------------
+# mooring adapters
+# --------------------------------------------------------------------------------------
+
+
+class _LinearMooring:
+    """Linear 6-DOF spring about the origin (verification only); same interface as moorlife.mooring."""
+
+    def __init__(self, stiffness: np.ndarray, batch: int):
+        self.k = np.asarray(stiffness, dtype=float)
+        self.batch = batch
+
+    def init(self, r_fair: np.ndarray) -> dict:
+        return {"q": np.zeros((self.batch, 6))}
+
+    def tension(self, state: dict) -> np.ndarray:
+        return np.full((self.batch, 3), np.nan)
+
+
+def _make_mooring(model: ModelInputs, batch: int):
+    if model.mooring_kind == "linear":
+        return _LinearMooring(model.mooring_stiffness, batch)
+    from moorlife import mooring as moor
+
+    props, layout, cfg = model.mooring_args
+    return moor.make_mooring(model.mooring_kind, props, layout, cfg, batch=batch)
+
+
+# --------------------------------------------------------------------------------------
+# integration
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Record:
+    """Kept part of a simulated record (after the transient).
+
+    Attributes
+    ----------
+    dt : float
+        Sample step, s.
+    motion : (B, 6, nt)
+        Platform displacement about the origin, m and rad.
+    accel : (B, 3, nt)
+        Nacelle (hub) acceleration, m/s2 (linearised rigid-body kinematics).
+    tension : (B, 3, nt)
+        Fairlead tension of M1, M2, M3, N (NaN for the linear verification mooring).
+    """
+
+    dt: float
+    motion: np.ndarray
+    accel: np.ndarray
+    tension: np.ndarray
+
+
+def integrate(
+    model: ModelInputs,
+    forcing: Forcing,
+    *,
+    transient: float,
+    q0: np.ndarray | None = None,
+    v0: np.ndarray | None = None,
+    mooring_override: Any | None = None,
+) -> Record:
+    """Integrate the coupled system over the forcing grid.
+
+    Parameters
+    ----------
+    model : ModelInputs
+    forcing : Forcing
+    transient : float
+        Seconds discarded at the start.
+    q0, v0 : (B, 6), optional
+        Initial displacement and velocity (default: at rest at the origin).
+    mooring_override : object, optional
+        A mooring object with ``init/step/tension`` (tests).
+
+    Returns
+    -------
+    Record
+    """
+    grid = forcing.grid
+    dt = grid.dt
+    nb = forcing.force.shape[0]
+    n = grid.n_steps
+    j0 = int(round(transient / dt))
+    if j0 >= n:
+        raise ValueError(f"transient {transient} s leaves nothing of a {n * dt} s record")
+    nt = n - j0
+    q = np.zeros((nb, 6)) if q0 is None else np.array(q0, dtype=float).reshape(nb, 6)
+    v = np.zeros((nb, 6)) if v0 is None else np.array(v0, dtype=float).reshape(nb, 6)
+    nr = model.rad_a.shape[0]
+    xr = np.zeros((nb, nr))
+    nf = model.filt_a.shape[0]
+    zf = np.zeros((nb, nf))
+    if nf:  # start the filter at its steady state for the initial wind (no start-up kick)
+        zf[:] = -np.linalg.solve(model.filt_a, model.filt_b[:, 0])[None, :] * forcing.wind[:, :1]
+    ra = _csr(model.rad_a)
+    minv = np.linalg.inv(model.mass)
+    kin = forcing.kinematics
+    if kin.shape[2] != model.strip_pos.shape[0]:
+        raise ValueError("forcing kinematics do not match the model strips")
+    moor = mooring_override if mooring_override is not None else _make_mooring(model, nb)
+    linear = isinstance(moor, _LinearMooring)
+    fair = np.ascontiguousarray(model.fairleads)
+    r_f = np.empty((nb, 3, 3))
+    v_f = np.empty((nb, 3, 3))
+    _fairlead_motion(q, v, fair, r_f, v_f)
+    mstate = moor.init(r_f.copy())
+    fmoor6 = np.zeros((nb, 6))
+    acc = np.zeros((nb, 6))
+    motion = np.empty((nb, 6, nt))
+    accel = np.empty((nb, 3, nt))
+    tension = np.empty((nb, 3, nt))
+    hub = model.hub
+    # the verification-only linear mooring is exact: folded into the stiffness
+    stiff = model.stiffness + (model.mooring_stiffness if linear else 0.0)
+    args = (forcing.force, forcing.wind, forcing.wind_dir, kin, forcing.kin_every, minv, stiff,
+            model.damping, ra[0], ra[1], ra[2], model.rad_b, model.rad_c, model.strip_pos, model.strip_axis,
+            model.strip_cdn, model.strip_cda, hub, model.thrust_speed, model.thrust_force,
+            model.filt_a, model.filt_b, model.filt_c, model.filt_d)
+    for j in range(n):
+        _fairlead_motion(q, v, fair, r_f, v_f)
+        if not linear:
+            fm, mstate = moor.step(mstate, r_f, v_f, dt)
+            _moor_generalised(q, np.ascontiguousarray(fm, dtype=float), fair, fmoor6)
+        i = j - j0
+        if i >= 0:
+            motion[:, :, i] = q
+            if not linear:
+                tension[:, :, i] = moor.tension(mstate)
+        _rk4_step(j, dt, q, v, xr, zf, fmoor6, *args, acc)
+        if i >= 0:
+            _hub_acceleration(acc, hub, accel[:, :, i])
+    if linear:
+        tension[:] = np.nan
+    return Record(dt=dt, motion=motion, accel=accel, tension=tension)
+
+
+def _hub_acceleration(acc: np.ndarray, hub: np.ndarray, out: np.ndarray) -> None:
+    """Hub acceleration ``a + alpha x hub`` (linearised) of ``acc (B, 6)`` into ``out (B, 3)``."""
+    out[:, 0] = acc[:, 0] + acc[:, 4] * hub[2] - acc[:, 5] * hub[1]
+    out[:, 1] = acc[:, 1] + acc[:, 5] * hub[0] - acc[:, 3] * hub[2]
+    out[:, 2] = acc[:, 2] + acc[:, 3] * hub[1] - acc[:, 4] * hub[0]
+
+
+# --------------------------------------------------------------------------------------
+# linear analysis (verification)
+# --------------------------------------------------------------------------------------
+
+
+def radiation_impedance(model: ModelInputs, omega: np.ndarray) -> np.ndarray:
+    """Frequency response of the radiation state space, ``Z(omega) = C (-i omega I - A)^-1 B``.
+
+    The radiation force on a harmonic velocity ``v exp(-i omega t)`` is ``-Z(omega) v``, so
+    ``Re(Z) = B(omega)`` and ``-Im(Z) / omega = A(omega) - A_inf``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (nw, 6, 6), complex
+    """
+    nr = model.rad_a.shape[0]
+    out = np.zeros((np.size(omega), 6, 6), dtype=complex)
+    if nr == 0:
+        return out
+    eye = np.eye(nr)
+    for i, w in enumerate(np.atleast_1d(omega)):
+        out[i] = model.rad_c @ np.linalg.solve(-1j * w * eye - model.rad_a, model.rad_b)
+    return out
+
+
+def frequency_response(
+    model: ModelInputs,
+    omega: np.ndarray,
+    theta: float,
+    *,
+    mooring_stiffness: np.ndarray | None = None,
+    added_mass: np.ndarray | None = None,
+    radiation_damping: np.ndarray | None = None,
+) -> np.ndarray:
+    """Linear response amplitude operator (RAO) per metre of wave amplitude.
+
+    Solves ``[-omega^2 (M + A_inf + a(omega)) - i omega B(omega) + K + K_m] xi = X(omega, theta)``
+    in the ``exp(-i omega t)`` convention. By default the radiation terms come from the model's
+    own state space (the exact frequency-domain counterpart of the time integrator).
+
+    Parameters
+    ----------
+    model : ModelInputs
+    omega : (nw,)
+        Frequencies, rad/s.
+    theta : float
+        Propagation angle, rad.
+    mooring_stiffness : (6, 6), optional
+        Default ``model.mooring_stiffness``.
+    added_mass, radiation_damping : (nw, 6, 6), optional
+        BEM ``A(omega) - A_inf`` and ``B(omega)`` instead of the state space.
+
+    Returns
+    -------
+    numpy.ndarray, shape (nw, 6), complex
+        Motion per metre of amplitude (m/m, rad/m).
+    """
+    w = np.atleast_1d(np.asarray(omega, dtype=float))
+    km = model.mooring_stiffness if mooring_stiffness is None else np.asarray(mooring_stiffness)
+    x = _interp_omega(_interp_heading(model.excitation, model.headings, theta), model.omega, w)
+    if added_mass is None:
+        z = radiation_impedance(model, w)
+    else:
+        z = np.asarray(radiation_damping) - 1j * w[:, None, None] * np.asarray(added_mass)
+    out = np.empty((w.size, 6), dtype=complex)
+    for i, wi in enumerate(w):
+        h = -wi**2 * model.mass + model.stiffness + km - 1j * wi * (model.damping + z[i])
+        out[i] = np.linalg.solve(h, x[i])
+    return out
+
+
+def linear_natural_periods(model: ModelInputs, mooring_stiffness: np.ndarray | None = None) -> np.ndarray:
+    """Undamped natural periods (s) per DOF from ``M + A_inf + a(omega_n)`` and ``K + K_m``.
+
+    Each diagonal entry is iterated on its own frequency (the added mass of the state space at
+    ``omega_n``), as in a decay test. Returns ``(6,)`` (``inf`` for a DOF without restoring).
+    """
+    km = model.mooring_stiffness if mooring_stiffness is None else np.asarray(mooring_stiffness)
+    kk = np.diag(model.stiffness + km)
+    out = np.full(6, np.inf)
+    for d in range(6):
+        if kk[d] <= 0:
+            continue
+        w = math.sqrt(kk[d] / model.mass[d, d])
+        for _ in range(30):
+            a = -radiation_impedance(model, np.array([w]))[0, d, d].imag / w
+            w = math.sqrt(kk[d] / (model.mass[d, d] + a))
+        out[d] = 2 * math.pi / w
+    return out
+
+
+# --------------------------------------------------------------------------------------
+# statistics of a record
+# --------------------------------------------------------------------------------------
+
+
+def summarise(
+    record: Record,
+    *,
+    line_info: Mapping[str, Any],
+    fatigue_cfg: Mapping[str, Any] | None,
+    stats_cfg: Mapping[str, Any] | None,
+    keep_timeseries: bool = False,
+) -> dict[str, np.ndarray]:
+    """The per-case outputs of a batch of records.
+
+    Parameters
+    ----------
+    record : Record
+        Kept records, ``(B, ..., nt)``.
+    line_info : mapping
+        ``link_diameter`` (m), ``mbs`` (N), ``chain`` of the lines.
+    fatigue_cfg : mapping or None
+        The ``fatigue:`` config section (curves, mean stress, residue); None skips damage.
+    stats_cfg : mapping or None
+        The ``statistics:`` section: ``block`` (s, GEV block length), ``mpm_duration``
+        (s, the duration the MPM refers to; default 3600, one hour of sea state).
+    keep_timeseries : bool
+        Also return the records (``ts_*``).
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        ``names.SIM_SCALAR_VARS`` ``(B,)``, ``names.SIM_LINE_VARS`` ``(B, 3)``,
+        ``gev_corr_<v>`` for ``v`` in ``names.GEV_VARS``, and :data:`EXTRA_SCALAR_VARS`,
+        :data:`EXTRA_LINE_VARS`. Magnitudes: surge, sway and heave MPMs are of ``|x|``; the
+        acceleration is the horizontal magnitude at the hub.
+    """
+    from moorlife import stats
+
+    st = dict(stats_cfg or {})
+    block = float(st.get("block", 60.0))
+    mpm_duration = float(st.get("mpm_duration", 3600.0))
+    dt = record.dt
+    mo = record.motion
+    nt = mo.shape[-1]
+    out: dict[str, np.ndarray] = {}
+
+    def gev(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return stats.gev_mpm(x, dt, block=block, duration=mpm_duration)
+
+    mpm, corr = gev(np.abs(mo[:, :3, :]))
+    for i, name in enumerate(("surge_mpm", "sway_mpm", "heave_mpm")):
+        out[name] = mpm[:, i]
+        out[f"gev_corr_{name}"] = corr[:, i]
+    acc = np.hypot(record.accel[:, 0, :], record.accel[:, 1, :])
+    out["accel_mpm"], out["gev_corr_accel_mpm"] = gev(acc)
+    pct = stats.percentiles(acc, [90.0, 95.0, 99.0])
+    out["accel_p90"], out["accel_p95"], out["accel_p99"] = pct[:, 0], pct[:, 1], pct[:, 2]
+    ten = record.tension
+    if np.all(np.isfinite(ten)):
+        out["tension_mpm"], out["gev_corr_tension_mpm"] = gev(ten)
+        out["tension_mean"] = ten.mean(axis=-1)
+        out["tension_std"] = ten.std(axis=-1)
+        out["tension_max"] = ten.max(axis=-1)
+        if fatigue_cfg is not None:
+            from moorlife import fatigue
+
+            settings = fatigue.fatigue_settings(fatigue_cfg, source="config.yaml")
+            d_sn, d_tn = fatigue.hourly_damage(
+                ten, nt * dt, link_diameter=line_info["link_diameter"], mbs=line_info["mbs"],
+                chain=line_info["chain"], **settings.damage_kwargs(),
+            )
+            out["damage_sn"], out["damage_tn"] = np.asarray(d_sn), np.asarray(d_tn)
+    else:
+        nan3 = np.full(ten.shape[:2], np.nan)
+        for name in ("tension_mpm", "gev_corr_tension_mpm", "tension_mean", "tension_std", "tension_max",
+                     "damage_sn", "damage_tn"):
+            out[name] = nan3.copy()
+    out["surge_mean"] = mo[:, 0].mean(axis=-1)
+    out["sway_mean"] = mo[:, 1].mean(axis=-1)
+    out["heave_mean"] = mo[:, 2].mean(axis=-1)
+    out["pitch_mean"] = np.rad2deg(mo[:, 4].mean(axis=-1))
+    out["surge_std"] = mo[:, 0].std(axis=-1)
+    out["pitch_mpm"], out["gev_corr_pitch_mpm"] = gev(np.rad2deg(np.abs(mo[:, 4])))
+    out["offset_max"] = np.hypot(mo[:, 0], mo[:, 1]).max(axis=-1)
+    if keep_timeseries:
+        for i, name in enumerate(("ts_surge", "ts_sway", "ts_heave", "ts_roll", "ts_pitch", "ts_yaw")):
+            out[name] = mo[:, i].astype(np.float32)
+        out["ts_accel"] = acc.astype(np.float32)
+        out["ts_tension"] = ten.astype(np.float32)
+    return out
+
+
+# --------------------------------------------------------------------------------------
+# one batch of sea states
+# --------------------------------------------------------------------------------------
+
+
+def _sim_settings(sim_cfg: Mapping[str, Any]) -> dict[str, Any]:
+    s = dict(sim_cfg)
+    out = {
+        "duration": float(s.get("duration", 3600.0)),
+        "transient": float(s.get("transient", 600.0)),
+        "dt": float(s.get("dt", 0.1)),
+        "gamma": s.get("gamma", "dnv"),
+        "kinematics_dt": float(s.get("kinematics_dt", 0.25)),
+        "second_order": bool(s.get("second_order", True)),
+        "keep_timeseries": bool(s.get("keep_timeseries", False)),
+        "wind": dict(s.get("wind", {})),
+        "omega_range": s.get("omega_range", None),
+    }
+    for key in ("duration", "dt", "kinematics_dt"):
+        if not out[key] > 0:
+            raise ValueError(f"config key 'simulation.{key}' = {s.get(key)!r} must be positive")
+    if out["transient"] < 0:
+        raise ValueError(f"config key 'simulation.transient' = {s.get('transient')!r} must be >= 0")
+    return out
+
+
+def _check_cases(cases: Mapping[str, np.ndarray], case_ids: np.ndarray) -> dict[str, np.ndarray]:
+    missing = [k for k in names.METOCEAN_VARS if k not in cases]
+    if missing:
+        raise ValueError(f"simulate_batch: sea-state variable(s) {missing} missing (got {sorted(cases)})")
+    arr = {k: np.atleast_1d(np.asarray(cases[k], dtype=float)) for k in names.METOCEAN_VARS}
+    nb = np.size(case_ids)
+    for k, v in arr.items():
+        if v.shape != (nb,):
+            raise ValueError(f"simulate_batch: {k!r} has shape {v.shape}, expected ({nb},) like case_ids")
+        bad = ~np.isfinite(v)
+        if k in ("hs", "tp", "wind_speed"):
+            bad |= v < 0
+        if k == "tp":
+            bad |= v == 0
+        if bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            raise ValueError(f"simulate_batch: case {case_ids[i]}: {k} = {v[i]!r} is invalid")
+    return arr
+
+
+def simulate_batch(
+    cases: Mapping[str, np.ndarray],
+    *,
+    case_ids: np.ndarray,
+    mooring_system: str,
+    seed: int,
+    model_inputs: ModelInputs,
+    sim_cfg: Mapping[str, Any],
+    fatigue_cfg: Mapping[str, Any] | None,
+    stats_cfg: Mapping[str, Any] | None,
+) -> dict[str, np.ndarray]:
+    """Simulate a batch of sea states and return their statistics (pure; Dask-friendly).
+
+    Parameters
+    ----------
+    cases : mapping of str to (B,) arrays
+        ``wind_speed`` (m/s, hub height), ``wind_dir`` (deg, from), ``hs`` (m), ``tp`` (s),
+        ``wave_dir`` (deg, from); other keys (e.g. ``hindcast_index``) are ignored.
+    case_ids : (B,) int
+        The case (or bin) ids: with ``seed`` and ``mooring_system`` they fix the random phases.
+    mooring_system : str
+        E.g. ``"MS3"``.
+    seed : int
+        The study seed.
+    model_inputs : ModelInputs
+        From :func:`prepare_model`.
+    sim_cfg, fatigue_cfg, stats_cfg : mapping
+        The ``simulation``, ``fatigue`` and ``statistics`` config sections.
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        See :func:`summarise`; leading axis the case.
+    """
+    ids = np.atleast_1d(np.asarray(case_ids))
+    sea = _check_cases(cases, ids)
+    s = _sim_settings(sim_cfg)
+    model = model_inputs
+    grid = env.record_grid(s["duration"], s["transient"], s["dt"])
+    n_bins = grid.n_fft // 2 + 1
+    wave_ph, wind_ph = env.case_streams(seed, mooring_system, ids, n_bins)
+    gamma = env.resolve_gamma(s["gamma"], sea["hs"], sea["tp"])
+    w_lo, w_hi = (float(model.omega.min()), float(model.omega.max())) if s["omega_range"] is None else map(
+        float, s["omega_range"])
+    waves = env.wave_components(grid, sea["hs"], sea["tp"], sea["wave_dir"], gamma, wave_ph,
+                                omega_min=w_lo, omega_max=w_hi)
+    wind = env.wind_series(grid, sea["wind_speed"], wind_ph, s["wind"])
+    kin_every = max(1, int(round(s["kinematics_dt"] / s["dt"])))
+    forcing = build_forcing(model, grid, waves, wind, sea["wind_dir"], kin_every=kin_every,
+                            second_order=s["second_order"])
+    record = integrate(model, forcing, transient=s["transient"])
+    return summarise(record, line_info=model.line_info, fatigue_cfg=fatigue_cfg, stats_cfg=stats_cfg,
+                     keep_timeseries=s["keep_timeseries"])
