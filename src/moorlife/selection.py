@@ -91,7 +91,7 @@ def _check_points(points: npt.ArrayLike, is_direction: npt.ArrayLike) -> tuple[n
     bad = ~np.isfinite(pts)
     if bad.any():
         row, col = np.argwhere(bad)[0]
-        raise ValueError(f"points column {col}, row {row}: value {pts[row, col]!r} is not finite")
+        raise ValueError(f"points column {col}, row {row}: value {float(pts[row, col])!r} is not finite")
     return pts, mask
 
 
@@ -485,7 +485,7 @@ def _classify(values: np.ndarray, edges: np.ndarray, name: str) -> np.ndarray:
     if below.any():
         row = int(np.flatnonzero(below)[0])
         raise ValueError(
-            f"{name}: value {values[row]!r} at row {row} is below the first class edge {edges[0]!r}"
+            f"{name}: value {float(values[row])!r} at row {row} is below the first class edge {float(edges[0])!r}"
         )
     return np.searchsorted(edges, values, side="right") - 1
 
@@ -611,7 +611,7 @@ def scatter_matrix(
         bad = ~np.isfinite(a)
         if bad.any():
             row = int(np.flatnonzero(bad)[0])
-            raise ValueError(f"{name}: value {a[row]!r} at row {row} is not finite")
+            raise ValueError(f"{name}: value {float(a[row])!r} at row {row} is not finite")
     if n == 0:
         raise ValueError("no sea states to bin")
     e_hs = _check_edges(hs_edges, "hs_edges")
@@ -686,7 +686,7 @@ def hindcast_points(hindcast: xr.Dataset, *, source: str = "hindcast") -> np.nda
         if bad.any():
             row = int(np.flatnonzero(bad)[0])
             when = f" ({names.TIME} {times[row]})" if times is not None else ""
-            raise ValueError(f"{source}: variable '{var}' row {row}{when}: value {a[row]!r} is not {rule}")
+            raise ValueError(f"{source}: variable '{var}' row {row}{when}: value {float(a[row])!r} is not {rule}")
         cols.append(a)
     return np.stack(cols, axis=1)
 
