@@ -9,6 +9,12 @@ configfile: "config/config.yaml"
 
 
 include: "workflow/rules/common.smk"
+
+
+wildcard_constraints:
+    ms="|".join(MS_IDS),
+
+
 include: "workflow/rules/metocean.smk"
 include: "workflow/rules/selection.smk"
 include: "workflow/rules/hydro.smk"

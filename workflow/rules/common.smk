@@ -15,17 +15,13 @@ MOORING = read_mooring_systems(config["mooring_systems"])
 MS_IDS = list(MOORING.index)
 
 
-wildcard_constraints:
-    ms="|".join(MS_IDS),
-
-
 def mooring_row(ms):
-    """The mooring-system table row of one system, as a plain dict (a rule param)."""
+    """The mooring-system table row of one system, as a plain dict (passed as params)."""
     return {k: (v.item() if hasattr(v, "item") else v) for k, v in MOORING.loc[ms].items()}
 
 
 def final_targets():
-    """What `snakemake` (rule all) builds: every stage that exists, for every system."""
+    """Targets of the default run (every stage that exists, for every system)."""
     return [
         "results/metocean/hindcast.zarr",
     ]
