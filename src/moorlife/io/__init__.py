@@ -32,6 +32,7 @@ __all__ = [
     "read_mooring_systems",
     "promote",
     "partial_path",
+    "save_figure",
     "storable",
 ]
 
@@ -148,6 +149,22 @@ def open_zarr(path: str | os.PathLike[str], *, load: bool = True) -> xr.Dataset:
         except Exception as exc:
             raise IncompleteStoreError(f"{p}: store is corrupted ({exc}); delete it and rerun") from exc
     return ds
+
+
+def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: int = 150) -> Path:
+    """Save a matplotlib figure as PNG (atomically) and close it."""
+    import matplotlib.pyplot as plt
+
+    dst = Path(path)
+    dst.parent.mkdir(parents=True, exist_ok=True)
+    tmp = dst.parent / f".{dst.stem}.tmp-{uuid.uuid4().hex[:8]}{dst.suffix}"
+    try:
+        fig.savefig(tmp, dpi=dpi, bbox_inches="tight")
+        os.replace(tmp, dst)
+    finally:
+        plt.close(fig)
+        tmp.unlink(missing_ok=True)
+    return dst
 
 
 def read_yaml(path: str | os.PathLike[str]) -> dict[str, Any]:
