@@ -989,7 +989,7 @@ def _check_cases(cases: Mapping[str, np.ndarray], case_ids: np.ndarray) -> dict[
             bad |= v == 0
         if bad.any():
             i = int(np.flatnonzero(bad)[0])
-            raise ValueError(f"simulate_batch: case {case_ids[i]}: {k} = {v[i]!r} is invalid")
+            raise ValueError(f"simulate_batch: case {case_ids[i]}: {k} = {float(v[i])!r} is invalid")
     return arr
 
 
