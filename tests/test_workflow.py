@@ -107,3 +107,68 @@ def test_unknown_config_key_named(tmp_path):
     res = smk(work, "-n", check=False, overlays=[*OVERLAYS, "bad.yaml"])
     assert res.returncode != 0
     assert "unknown config key 'simulation.durration'" in res.stdout + res.stderr
+
+
+def _furthest(ms: str, work: Path) -> str:
+    """The furthest per-system output the DAG has."""
+    for name in ("lifecycle.zarr", "simulations.zarr"):
+        if (work / "results" / ms / name).exists():
+            return f"results/{ms}/{name}"
+    raise AssertionError(f"no per-system output for {ms}")
+
+
+def test_single_system_target_builds_only_that_chain(study, tmp_path):
+    work = clone_study(study, tmp_path / "w")
+    target = _furthest("MS3", work)
+    shutil.rmtree(work / "results" / "MS1")
+    shutil.rmtree(work / "results" / "MS3")
+    res = smk(work, target)
+    log = res.stdout + res.stderr
+    assert (work / target).exists()
+    assert not (work / "results" / "MS1").exists(), "MS1 must not be built for an MS3 target"
+    assert "ms=MS1" not in log and "ms=MS3" in log
+    for shared in ("metocean", "selection", "hydro"):
+        assert not re.search(rf"^rule {shared}:", log, flags=re.M), f"{shared} was rebuilt"
+    xr.testing.assert_identical(mio.open_zarr(work / target), mio.open_zarr(study / target))
+
+
+def _done_batches(part: Path) -> int:
+    try:
+        import zarr
+
+        return int(np.asarray(zarr.open_group(str(part), mode="r")["_batch_done"][:]).sum())
+    except Exception:
+        return 0
+
+
+def test_sigkill_during_fanout_then_resume_is_bit_identical(study, tmp_path):
+    work = clone_study(study, tmp_path / "k")
+    target = "results/MS1/simulations.zarr"
+    shutil.rmtree(work / target)
+    (work / "slow.yaml").write_text("simulation:\n  batch_size: 1\n")
+    overlays = [*OVERLAYS, "slow.yaml"]
+    part = mio.partial_path(work / target)
+    cmd = [SNAKEMAKE, "--cores", "2", "--configfile", *overlays, target]
+    proc = subprocess.Popen(cmd, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+    deadline = time.time() + 600
+    while _done_batches(part) < 2 and proc.poll() is None and time.time() < deadline:
+        time.sleep(0.02)
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    assert not (work / target).exists(), "the run was not killed during the fan-out"
+    n_before = _done_batches(part)
+    assert n_before >= 2
+    smk(work, "--unlock", overlays=overlays)
+    smk(work, target, overlays=overlays)
+    log = next((work / "logs").rglob("*MS1*simul*.log"), None) or next((work / "logs").rglob("*MS1*.log"))
+    m = re.search(r"resuming .*: (\d+) of (\d+) batches already done", log.read_text())
+    assert m and int(m.group(1)) >= n_before, "finished sea states must be reused"
+    xr.testing.assert_identical(mio.open_zarr(work / target).drop_attrs(), mio.open_zarr(study / target).drop_attrs())
+
+
+def test_one_worker_equals_two_workers(study, tmp_path):
+    work = clone_study(study, tmp_path / "c")
+    target = "results/MS3/simulations.zarr"
+    smk(work, "--forcerun", target, target, cores=1)
+    xr.testing.assert_identical(mio.open_zarr(work / target).drop_attrs(), mio.open_zarr(study / target).drop_attrs())
