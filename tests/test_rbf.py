@@ -1,0 +1,182 @@
+"""Tests of moorlife.rbf: exact interpolation, polynomial reproduction, scipy agreement,
+Rippa's closed form against brute-force leave-one-out, the circular metric and the kernel."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.interpolate import RBFInterpolator
+
+from moorlife import rbf, selection
+
+DIRS5 = np.array([False, True, False, False, True])  # (W, beta, Hs, Tp, alpha)
+
+
+def _sea_states(n: int, seed: int = 0) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    return np.column_stack(
+        [
+            rng.uniform(0, 30, n),
+            rng.uniform(0, 360, n),
+            rng.uniform(0.2, 8, n),
+            rng.uniform(3, 20, n),
+            rng.uniform(0, 360, n),
+        ]
+    )
+
+
+def _unit_box(n: int, d: int, seed: int) -> np.ndarray:
+    return np.random.default_rng(seed).random((n, d))
+
+
+def test_exact_interpolation_at_centres_5d_with_directions():
+    x = _sea_states(120)
+    y = np.column_stack([np.sin(x[:, 2]) + np.cos(np.deg2rad(x[:, 1])), x[:, 3] ** 2])
+    for q in (0.1, 0.175, 0.4):
+        model = rbf.fit_rbf(x, y, is_direction=DIRS5, shape=q)
+        np.testing.assert_allclose(rbf.predict_rbf(model, x), y, rtol=0, atol=1e-9 * np.abs(y).max())
+
+
+def test_log_output_interpolates_exactly_and_stays_positive():
+    x = _sea_states(80, seed=3)
+    dmg = 1e-7 * x[:, 2] ** 3 * np.exp(-(((x[:, 3] - 12) / 4) ** 2)) + 1e-12
+    model = rbf.fit_rbf(x, dmg, is_direction=DIRS5, shape=0.2, log_output=True)
+    np.testing.assert_allclose(rbf.predict_rbf(model, x)[:, 0], dmg, rtol=1e-8)
+    assert np.all(rbf.predict_rbf(model, _sea_states(500, seed=4)) > 0)
+
+
+@pytest.mark.parametrize("q", [0.1, 0.3, 1.0])
+def test_linear_function_reproduced_exactly(q):
+    x = _unit_box(60, 3, seed=1)
+    coef = np.array([2.5, -1.0, 0.75])
+    y = 4.0 + x @ coef
+    model = rbf.fit_rbf(x, y, is_direction=[False] * 3, shape=q, lo=np.zeros(3), span=np.ones(3))
+    xq = _unit_box(400, 3, seed=2) * 1.4 - 0.2  # also outside the hull
+    np.testing.assert_allclose(rbf.predict_rbf(model, xq)[:, 0], 4.0 + xq @ coef, atol=1e-8)
+    np.testing.assert_allclose(model.weights, 0.0, atol=1e-8)
+
+
+def test_direction_trend_reproduced_exactly():
+    """The directional trend cos/sin of the angle is in the polynomial space: no jump at north."""
+    x = _sea_states(70, seed=5)
+    y = 1.0 + 0.3 * x[:, 0] / 30 + np.cos(np.deg2rad(x[:, 4])) - 2 * np.sin(np.deg2rad(x[:, 1]))
+    model = rbf.fit_rbf(x, y, is_direction=DIRS5, shape=0.15, lo=[0, 0, 0.2, 3, 0], span=[30, 180, 7.8, 17, 180])
+    xq = _sea_states(300, seed=6)
+    yq = 1.0 + 0.3 * xq[:, 0] / 30 + np.cos(np.deg2rad(xq[:, 4])) - 2 * np.sin(np.deg2rad(xq[:, 1]))
+    np.testing.assert_allclose(rbf.predict_rbf(model, xq)[:, 0], yq, atol=1e-8)
+
+
+@pytest.mark.parametrize("q", [0.15, 0.3])
+def test_agrees_with_scipy_rbfinterpolator(q):
+    x = _unit_box(150, 4, seed=7)
+    y = np.column_stack([np.sin(3 * x[:, 0]) * x[:, 1] + x[:, 2] ** 2 - x[:, 3], np.exp(x[:, 0] - x[:, 3])])
+    xq = _unit_box(2000, 4, seed=8)
+    model = rbf.fit_rbf(x, y, is_direction=[False] * 4, shape=q, lo=np.zeros(4), span=np.ones(4))
+    ours = rbf.predict_rbf(model, xq, chunk_rows=333)
+    ref = RBFInterpolator(x, y, kernel="gaussian", epsilon=1.0 / q, degree=1)(xq)
+    np.testing.assert_allclose(ours, ref, rtol=0, atol=1e-9 * np.abs(ref).max())
+    # and the comparison is sensitive: another shape parameter gives other numbers
+    assert not np.allclose(ours, rbf.predict_rbf(rbf.fit_rbf(x, y, is_direction=[False] * 4, shape=2 * q,
+                                                             lo=np.zeros(4), span=np.ones(4)), xq))
+
+
+def test_rippa_closed_form_equals_brute_force_leave_one_out():
+    x = _sea_states(50, seed=9)
+    y = np.column_stack([x[:, 2] ** 1.5 * np.cos(np.deg2rad(x[:, 4] - 300)), x[:, 0] / (1 + x[:, 3])])
+    q = 0.25
+    model = rbf.fit_rbf(x, y, is_direction=DIRS5, shape=q)
+    lo, span = model.space.lower, model.space.scale
+    for k in (0, 17, 49):
+        keep = np.arange(50) != k
+        sub = rbf.fit_rbf(x[keep], y[keep], is_direction=DIRS5, shape=q, lo=lo, span=span)
+        e = y[k] - rbf.predict_rbf(sub, x[k : k + 1])[0]
+        np.testing.assert_allclose(model.loo_error[k], e, rtol=1e-6, atol=1e-10)
+
+
+def test_rippa_picks_the_grid_minimum_and_sharing_reduces_distinct_shapes():
+    x = _sea_states(150, seed=10)
+    y = np.column_stack([np.sin(x[:, 2]) + x[:, 3] / 10 + 0.01 * k for k in range(4)] + [x[:, 0] ** 2 / 900])
+    model_sel = rbf.fit_space(x, DIRS5)
+    z = rbf.normalise(x, model_sel)
+    d2 = rbf.squared_distances(z, z, DIRS5)
+    basis = rbf.polynomial_basis(z, DIRS5)
+    grid = rbf.shape_grid(0.05, 1.0, 12)
+    curve = rbf.loo_curve(d2, basis, y, grid)
+    q = rbf.choose_shapes(curve)
+    np.testing.assert_array_equal(q, grid[np.argmin(curve.rms, axis=0)])
+    model = rbf.fit_rbf(x, y, is_direction=DIRS5, shapes=grid)
+    np.testing.assert_array_equal(model.shape, q)
+    shared = rbf.choose_shapes(curve, share_tol=0.5)
+    assert np.unique(shared).size <= np.unique(q).size
+    best = curve.rms.min(axis=0)
+    got = curve.rms[np.searchsorted(grid, shared), np.arange(y.shape[1])]
+    assert np.all(got <= best * 1.5 + 1e-15)
+
+
+def test_distance_is_the_selection_metric():
+    x = _sea_states(40, seed=11)
+    space = rbf.fit_space(x, DIRS5)
+    z = rbf.normalise(x, space)
+    lo, span = selection.scaling_from(x, DIRS5)
+    zs = selection.normalise(x, DIRS5, lo, span)
+    np.testing.assert_array_equal(z, zs)
+    np.testing.assert_allclose(np.sqrt(rbf.squared_distances(z, z, DIRS5)), selection.pairwise_distance(zs, zs, DIRS5),
+                               atol=1e-14)
+    # 350 deg and 10 deg are 20 deg apart on the circle: 20 / 180 in normalised units
+    a = rbf.normalise(np.array([[0, 350.0, 1, 5, 0]]), space)
+    b = rbf.normalise(np.array([[0, 10.0, 1, 5, 0]]), space)
+    np.testing.assert_allclose(rbf.squared_distances(a, b, DIRS5)[0, 0], (20 / 180) ** 2)
+
+
+def test_fast_gaussian_within_one_ulp_of_numpy():
+    d2 = np.random.default_rng(12).random((64, 900)) * 900
+    d2[0, :6] = [0.0, 1e-300, 0.5, 708.0, 708.5, 1e6]
+    g = rbf.gaussian(d2, 1.0)
+    ref = np.exp(-d2)
+    ref[d2 > 708.0] = 0.0
+    ulps = np.abs(g - ref) / np.spacing(np.maximum(ref, np.finfo(float).tiny))
+    assert ulps.max() <= 1.0
+    assert g[0, 4] == 0.0 and g[0, 5] == 0.0 and g[0, 0] == 1.0
+
+
+def test_prediction_independent_of_chunking():
+    x = _sea_states(100, seed=13)
+    y = np.column_stack([x[:, 2], x[:, 3] ** 0.5])
+    model = rbf.fit_rbf(x, y, is_direction=DIRS5, shape=[0.1, 0.3])
+    xq = _sea_states(1234, seed=14)
+    a = rbf.predict_rbf(model, xq, chunk_rows=1234)
+    b = rbf.predict_rbf(model, xq, chunk_rows=97)
+    np.testing.assert_array_equal(a, b)
+
+
+def test_nearest_centre():
+    x = _sea_states(30, seed=15)
+    model = rbf.fit_rbf(x, x[:, 2], is_direction=DIRS5, shape=0.2)
+    xq = _sea_states(200, seed=16)
+    dist, idx = rbf.nearest_centre(model, xq)
+    z, zc = rbf.normalise(xq, model.space), model.centres
+    full = np.sqrt(rbf.squared_distances(z, zc, DIRS5))
+    np.testing.assert_array_equal(idx, np.argmin(full, axis=1))
+    np.testing.assert_allclose(dist, full.min(axis=1))
+    d0, i0 = rbf.nearest_centre(model, x)
+    np.testing.assert_array_equal(i0, np.arange(30))
+    np.testing.assert_allclose(d0, 0.0, atol=1e-15)
+
+
+def test_bad_input_errors_name_the_problem():
+    x = _sea_states(20, seed=17)
+    y = x[:, 2].copy()
+    y[5] = -1.0
+    with pytest.raises(ValueError, match="output 0 .* row 5"):
+        rbf.fit_rbf(x, y, is_direction=DIRS5, shape=0.2, log_output=True)
+    y[5] = np.nan
+    with pytest.raises(ValueError, match="output 0, row 5"):
+        rbf.fit_rbf(x, y, is_direction=DIRS5, shape=0.2)
+    x2 = x.copy()
+    x2[3, 2] = np.inf
+    with pytest.raises(ValueError, match="row 3, column 2"):
+        rbf.fit_rbf(x2, x[:, 2], is_direction=DIRS5, shape=0.2)
+    with pytest.raises(ValueError, match="positive"):
+        rbf.fit_rbf(x, x[:, 2], is_direction=DIRS5, shape=0.0)
+    with pytest.raises(ValueError, match="well-conditioned"):
+        rbf.choose_shapes(rbf.LOOCurve(np.array([1.0, 2.0]), np.full((2, 1), np.inf), np.zeros(2)))
