@@ -152,7 +152,12 @@ class ModelInputs:
     mooring_stiffness : (6, 6)
         Linear mooring stiffness used by ``"linear"`` and by :func:`linear_natural_periods`.
     mooring_args : tuple
-        ``(props, layout, cfg)`` passed to ``moorlife.mooring.make_mooring``.
+        ``(props, layout, cfg, prototype)``: what ``moorlife.mooring.make_mooring`` needs, and
+        a prototype model whose precomputed tables are reused for every batch.
+    static_load : (6,)
+        Constant load trimming the platform to its design draft and even keel with the
+        mooring at rest (the ballast adjustment of each mooring system): minus the heave,
+        roll and pitch components of the mooring load at rest, N and N m.
     line_info : dict
         ``link_diameter`` (m), ``mbs`` (N), ``chain`` of the lines (for fatigue).
     """
@@ -185,6 +190,7 @@ class ModelInputs:
     mooring_kind: str = "linear"
     mooring_stiffness: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
     mooring_args: tuple = ()
+    static_load: np.ndarray = field(default_factory=lambda: np.zeros(6))
     line_info: Mapping[str, Any] = field(default_factory=dict)
 
 
@@ -637,11 +643,16 @@ class _LinearMooring:
 
 
 def _make_mooring(model: ModelInputs, batch: int):
+    """A mooring model for ``batch`` cases, reusing the prototype built by :func:`prepare_model`."""
     if model.mooring_kind == "linear":
         return _LinearMooring(model.mooring_stiffness, batch)
     from moorlife import mooring as moor
 
-    props, layout, cfg = model.mooring_args
+    props, layout, cfg, proto = model.mooring_args
+    if isinstance(proto, moor.QuasiStaticMooring):
+        return moor.QuasiStaticMooring(proto.table, layout, batch)
+    if isinstance(proto, moor.DynamicMooring):
+        return moor.DynamicMooring(proto.model, props, layout, proto.settings, batch)
     return moor.make_mooring(model.mooring_kind, props, layout, cfg, batch=batch)
 
 
@@ -726,6 +737,7 @@ def integrate(
     v_f = np.empty((nb, 3, 3))
     _fairlead_motion(q, v, fair, r_f, v_f)
     mstate = moor.init(r_f.copy())
+    f_prev = np.zeros((nb, 3, 3)) if linear else np.array(moor.forces(mstate), dtype=float)
     fmoor6 = np.zeros((nb, 6))
     acc = np.zeros((nb, 6))
     motion = np.empty((nb, 6, nt))
@@ -738,16 +750,24 @@ def integrate(
             model.damping, ra[0], ra[1], ra[2], model.rad_b, model.rad_c, model.strip_pos, model.strip_axis,
             model.strip_cdn, model.strip_cda, hub, model.thrust_speed, model.thrust_force,
             model.filt_a, model.filt_b, model.filt_c, model.filt_d)
+    f_mid = np.empty((nb, 3, 3))
     for j in range(n):
-        _fairlead_motion(q, v, fair, r_f, v_f)
-        if not linear:
-            fm, mstate = moor.step(mstate, r_f, v_f, dt)
-            _moor_generalised(q, np.ascontiguousarray(fm, dtype=float), fair, fmoor6)
         i = j - j0
         if i >= 0:
             motion[:, :, i] = q
             if not linear:
                 tension[:, :, i] = moor.tension(mstate)
+        if not linear:
+            # predictor: advance the lines to the fairlead position extrapolated to t + dt, and
+            # drive the platform over the step with the mean of the start and predicted forces
+            _fairlead_motion(q, v, fair, r_f, v_f)
+            r_f += dt * v_f
+            f_new, mstate = moor.step(mstate, r_f, v_f, dt)
+            np.add(f_prev, f_new, out=f_mid)
+            f_mid *= 0.5
+            f_prev[...] = f_new
+            _moor_generalised(q, f_mid, fair, fmoor6)
+            fmoor6 += model.static_load
         _rk4_step(j, dt, q, v, xr, zf, fmoor6, *args, acc)
         if i >= 0:
             _hub_acceleration(acc, hub, accel[:, :, i])
@@ -878,8 +898,9 @@ def summarise(
     fatigue_cfg : mapping or None
         The ``fatigue:`` config section (curves, mean stress, residue); None skips damage.
     stats_cfg : mapping or None
-        The ``statistics:`` section: ``block`` (s, GEV block length), ``mpm_duration``
-        (s, the duration the MPM refers to; default 3600, one hour of sea state).
+        The ``statistics:`` section (``block``: GEV block length in s, ``method``) plus
+        ``mpm_duration`` (s, the duration the MPM refers to; default 3600, one hour of sea
+        state; taken from ``simulation.mpm_duration`` by :func:`simulate_batch`).
     keep_timeseries : bool
         Also return the records (``ts_*``).
 
@@ -896,13 +917,14 @@ def summarise(
     st = dict(stats_cfg or {})
     block = float(st.get("block", 60.0))
     mpm_duration = float(st.get("mpm_duration", 3600.0))
+    method = str(st.get("method", "lmoments"))
     dt = record.dt
     mo = record.motion
     nt = mo.shape[-1]
     out: dict[str, np.ndarray] = {}
 
     def gev(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        return stats.gev_mpm(x, dt, block=block, duration=mpm_duration)
+        return stats.gev_mpm(x, dt, block=block, duration=mpm_duration, method=method)
 
     mpm, corr = gev(np.abs(mo[:, :3, :]))
     for i, name in enumerate(("surge_mpm", "sway_mpm", "heave_mpm")):
@@ -964,6 +986,7 @@ def _sim_settings(sim_cfg: Mapping[str, Any]) -> dict[str, Any]:
         "keep_timeseries": bool(s.get("keep_timeseries", False)),
         "wind": dict(s.get("wind", {})),
         "omega_range": s.get("omega_range", None),
+        "mpm_duration": float(s.get("mpm_duration", 3600.0)),
     }
     for key in ("duration", "dt", "kinematics_dt"):
         if not out[key] > 0:
@@ -1039,10 +1062,136 @@ def simulate_batch(
         float, s["omega_range"])
     waves = env.wave_components(grid, sea["hs"], sea["tp"], sea["wave_dir"], gamma, wave_ph,
                                 omega_min=w_lo, omega_max=w_hi)
-    wind = env.wind_series(grid, sea["wind_speed"], wind_ph, s["wind"])
+    wind_cfg = {**s["wind"], "height": float(model.hub[2])}
+    wind = env.wind_series(grid, sea["wind_speed"], wind_ph, wind_cfg)
     kin_every = max(1, int(round(s["kinematics_dt"] / s["dt"])))
     forcing = build_forcing(model, grid, waves, wind, sea["wind_dir"], kin_every=kin_every,
                             second_order=s["second_order"])
     record = integrate(model, forcing, transient=s["transient"])
-    return summarise(record, line_info=model.line_info, fatigue_cfg=fatigue_cfg, stats_cfg=stats_cfg,
+    st = {**dict(stats_cfg or {}), "mpm_duration": s["mpm_duration"]}
+    return summarise(record, line_info=model.line_info, fatigue_cfg=fatigue_cfg, stats_cfg=st,
                      keep_timeseries=s["keep_timeseries"])
+
+
+# --------------------------------------------------------------------------------------
+# model preparation (once per mooring system)
+# --------------------------------------------------------------------------------------
+
+
+def _strips_from_members(members: list[Mapping[str, Any]], strip_length: float, rho: float) -> tuple[np.ndarray, ...]:
+    """Morison drag strips ``(pos, axis, cdn, cda)`` from the ``members`` of platform.yaml.
+
+    Each member ``a -> b`` is cut into strips of at most ``strip_length``; only the wetted
+    part (``z <= 0``) is kept. The axial (heave-plate) drag ``axial_cd`` acts on the full
+    disk ``pi D^2 / 4`` at end ``a``.
+    """
+    pos, axis, cdn, cda = [], [], [], []
+    for mem in members:
+        a = np.asarray(mem["a"], dtype=float)
+        b = np.asarray(mem["b"], dtype=float)
+        d = float(mem["diameter"])
+        seg = b - a
+        length = float(np.linalg.norm(seg))
+        if length <= 0:
+            raise ValueError(f"platform member {mem.get('name', '?')!r}: ends a and b coincide")
+        t = seg / length
+        n = max(1, int(math.ceil(length / strip_length)))
+        for k in range(n):
+            s0, s1 = k / n, (k + 1) / n
+            p0, p1 = a + s0 * seg, a + s1 * seg
+            if p0[2] > 0 and p1[2] > 0:
+                continue
+            # clip the wetted part at the still-water line
+            if p0[2] > 0 or p1[2] > 0:
+                lo, hi = (p0, p1) if p0[2] <= 0 else (p1, p0)
+                f = (0.0 - lo[2]) / (hi[2] - lo[2])
+                hi = lo + f * (hi - lo)
+                p0, p1 = lo, hi
+            wet = float(np.linalg.norm(p1 - p0))
+            pos.append(0.5 * (p0 + p1))
+            axis.append(t)
+            cdn.append(0.5 * rho * float(mem.get("cd", 0.0)) * d * wet)
+            cda.append(0.0)
+        if float(mem.get("axial_cd", 0.0)) > 0 and a[2] <= 0:
+            pos.append(a.copy())
+            axis.append(t)
+            cdn.append(0.0)
+            cda.append(0.5 * rho * float(mem["axial_cd"]) * math.pi * d**2 / 4.0)
+    return (np.asarray(pos, dtype=float).reshape(-1, 3), np.asarray(axis, dtype=float).reshape(-1, 3),
+            np.asarray(cdn, dtype=float), np.asarray(cda, dtype=float))
+
+
+def _rest_mooring_load(proto: Any, fairleads: np.ndarray) -> np.ndarray:
+    """6-DOF mooring load about the origin with the platform at rest (batch of one)."""
+    state = proto.init(np.ascontiguousarray(fairleads[None, :, :], dtype=float))
+    f = np.array(proto.forces(state), dtype=float)
+    out = np.zeros((1, 6))
+    _moor_generalised(np.zeros((1, 6)), f, np.ascontiguousarray(fairleads), out)
+    return out[0]
+
+
+def prepare_model(
+    platform_ds: Any,
+    platform_cfg: Mapping[str, Any],
+    mooring_row: Mapping[str, Any],
+    mooring_cfg: Mapping[str, Any] | None,
+    sim_cfg: Mapping[str, Any],
+) -> ModelInputs:
+    """Assemble the integrator inputs of one mooring system (call once, reuse for every batch).
+
+    Parameters
+    ----------
+    platform_ds : xarray.Dataset
+        ``results/hydro/platform.nc`` (BEM coefficients).
+    platform_cfg : mapping
+        ``config/platform.yaml`` (masses, members, turbine).
+    mooring_row : mapping
+        The system's row of ``config/mooring_systems.tsv``.
+    mooring_cfg : mapping or None
+        The ``mooring:`` config section; ``mooring.model`` selects quasi-static or dynamic lines.
+    sim_cfg : mapping
+        The ``simulation:`` section (``extra_damping``, ``thrust_speed_step``).
+
+    Returns
+    -------
+    ModelInputs
+    """
+    from moorlife import hydro, mooring as moor, turbine
+
+    pm = hydro.load_platform_model(platform_ds, platform_cfg)
+    env_cfg = dict(platform_cfg.get("environment", {}))
+    rho = float(env_cfg.get("rho_water", 1025.0))
+    g = float(env_cfg.get("gravity", env.G))
+    depth = float(env_cfg.get("water_depth", 200.0))
+    props = moor.line_properties(mooring_row, water_density=rho, gravity=g)
+    layout = moor.oc4_layout(mooring_cfg)
+    kind = moor.mooring_settings(mooring_cfg).model
+    proto = moor.make_mooring(kind, props, layout, mooring_cfg, batch=1)
+    fair = np.asarray(layout.fairleads_body, dtype=float)
+    rest = _rest_mooring_load(proto, fair)
+    static = np.zeros(6)
+    static[[2, 3, 4]] = -rest[[2, 3, 4]]
+    strips = _morison_strips(pm, platform_cfg, rho)
+    v = np.arange(-40.0, 80.0 + 1e-9, float(sim_cfg.get("thrust_speed_step", 0.02)))
+    thrust = np.asarray(turbine.thrust(pm.turbine, v), dtype=float) if hasattr(pm, "turbine") else np.asarray(
+        turbine.thrust(v), dtype=float)
+    fa, fb, fc, fd = _pitch_filter(pm)
+    ss_a, ss_b, ss_c = (np.asarray(getattr(pm, k), dtype=float) for k in ("ss_A", "ss_B", "ss_C"))
+    damp = np.diag(np.asarray(sim_cfg.get("extra_damping", [0.0] * 6), dtype=float))
+    hub = _hub_position(pm, platform_cfg)
+    km = np.diag(np.asarray(platform_cfg.get("mooring_stiffness_diag", [0.0] * 6), dtype=float))
+    return build_model(
+        mass=np.asarray(pm.mass, float) + np.asarray(pm.added_mass_inf, float),
+        stiffness=np.asarray(pm.stiffness, float),
+        damping=damp,
+        rad_a=ss_a, rad_b=ss_b, rad_c=ss_c,
+        omega=np.asarray(pm.omega, float), headings=np.asarray(pm.headings, float),
+        excitation=np.asarray(pm.excitation), drift=np.asarray(pm.drift, float),
+        strip_pos=strips[0], strip_axis=strips[1], strip_cdn=strips[2], strip_cda=strips[3],
+        hub=hub, thrust_speed=v, thrust_force=thrust,
+        filt_a=fa, filt_b=fb, filt_c=fc, filt_d=fd,
+        fairleads=fair, depth=depth, rho=rho, gravity=g,
+        mooring_kind=kind, mooring_stiffness=km,
+        mooring_args=(props, layout, mooring_cfg, proto), static_load=static,
+        line_info={"link_diameter": props.link_diameter, "mbs": props.MBS, "chain": props.chain},
+    )
