@@ -319,15 +319,19 @@ def _count_turning(rev, close):  # pragma: no cover - compiled
     d_join = res[0] - res[hi - 1]
     t1 = d_end * d_start
     t2 = d_end * d_join
-    drop_end = False
-    drop_start = False
-    if t1 > 0.0 and t2 >= 0.0:
+    # t2 < 0: the residue's last point is a reversal; the first point of the repeat is
+    # one only if the repeat starts in the direction the residue ended (t1 > 0).
+    # t2 > 0: the last point is not a reversal; the first of the repeat is one iff t1 < 0.
+    # t2 = 0: the two coincide; keep one, and only if the direction turns there (t1 < 0).
+    if t2 < 0.0:
+        drop_end = False
+        drop_start = t1 < 0.0
+    elif t2 > 0.0:
         drop_end = True
+        drop_start = t1 > 0.0
+    else:
+        drop_end = t1 > 0.0
         drop_start = True
-    elif t1 < 0.0 and t2 >= 0.0:
-        drop_start = True
-    elif t1 < 0.0 and t2 < 0.0:
-        drop_end = True
     n1 = hi - 1 if drop_end else hi
     for j in range(n1):
         joined[nj] = res[j]
@@ -732,7 +736,8 @@ def hourly_damage(
     bad = ~np.isfinite(flat)
     if bad.any():
         row, col = np.argwhere(bad)[0]
-        raise ValueError(f"tension: non-finite value at record {np.unravel_index(row, lead)}, sample {col}")
+        rec = tuple(int(v) for v in np.unravel_index(int(row), lead))
+        raise ValueError(f"tension: non-finite value at record {rec}, sample {int(col)}")
     get_curves(chain, curves)  # validate once
     scale = SECONDS_PER_HOUR / float(duration)
     out_sn = np.empty(flat.shape[0])
