@@ -164,3 +164,75 @@ def test_bad_cases_are_rejected():
     with pytest.raises(ValueError, match="missing"):
         sim.simulate_batch(cases, case_ids=np.array([7]), mooring_system="MS1", seed=1, model_inputs=m,
                            sim_cfg={}, fatigue_cfg=None, stats_cfg=None)
+
+
+# paper Table 4 (copied from config/mooring_systems.tsv)
+ROWS = {
+    "MS1": dict(mass_kg_per_m=92, pretension_kN=811, link_diameter_mm=68, equivalent_diameter_m=0.1199,
+                EA_N=5.43e8, MBS_N=5420364, chain="studless"),
+    "MS3": dict(mass_kg_per_m=200, pretension_kN=1770, link_diameter_mm=100, equivalent_diameter_m=0.1763,
+                EA_N=1.16e9, MBS_N=10944000, chain="studless"),
+    "MS6": dict(mass_kg_per_m=634, pretension_kN=5675, link_diameter_mm=178, equivalent_diameter_m=0.3138,
+                EA_N=3.55e9, MBS_N=28664642, chain="studless"),
+}
+QS = {"model": "quasistatic"}
+SIM = {"duration": 240.0, "transient": 60.0, "dt": 0.1, "gamma": "dnv", "kinematics_dt": 0.5,
+       "wind": {"spectrum": "npd", "f_max": 0.5}}
+STATS = {"block": 20.0, "method": "lmoments"}
+
+
+def moored(ms, kind="quasistatic"):
+    base = synthetic_model(thrust=True, strips=True)
+    return sim.attach_mooring(base, {**ROWS[ms], "mooring_system": ms}, {"model": kind})
+
+
+@pytest.fixture(scope="module")
+def ms3():
+    return moored("MS3")
+
+
+def sea(n, **kw):
+    base = dict(wind_speed=[12.1, 6.0, 18.0], wind_dir=[328.0, 90.0, 270.0], hs=[3.35, 1.0, 4.0],
+                tp=[9.21, 8.0, 11.0], wave_dir=[316.0, 300.0, 270.0])
+    base.update(kw)
+    return {k: np.asarray(v[:n], dtype=float) for k, v in base.items()}
+
+
+def test_batch_is_bit_identical_to_single_cases(ms3):
+    kw = dict(mooring_system="MS3", seed=5, model_inputs=ms3, sim_cfg=SIM, fatigue_cfg={}, stats_cfg=STATS)
+    both = sim.simulate_batch(sea(3), case_ids=np.array([10, 11, 12]), **kw)
+    one = sim.simulate_batch({k: v[1:2] for k, v in sea(3).items()}, case_ids=np.array([11]), **kw)
+    for name in (*sim.names.SIM_SCALAR_VARS, *sim.names.SIM_LINE_VARS):
+        assert name in both and both[name].shape[0] == 3
+        np.testing.assert_array_equal(both[name][1:2], one[name], err_msg=name)
+    for name in sim.names.GEV_VARS:
+        assert f"gev_corr_{name}" in both
+    assert both["tension_mpm"].shape == (3, 3)
+    assert np.all(both["damage_sn"] > 0) and np.all(both["damage_tn"] > 0)
+    # another seed changes the realisation
+    other = sim.simulate_batch({k: v[1:2] for k, v in sea(3).items()}, case_ids=np.array([12]), **kw)
+    assert other["surge_mpm"][0] != one["surge_mpm"][0]
+
+
+def test_trim_load_keeps_the_platform_at_rest(ms3):
+    grid = env.record_grid(120.0, 0.0, 0.1)
+    rec = sim.integrate(ms3, quiet_forcing(ms3, grid), transient=0.0)
+    assert np.abs(rec.motion[0, :3]).max() < 0.02  # m
+    assert np.abs(rec.motion[0, 3:]).max() < 1e-4  # rad
+    # the rest tension is the catenary pretension (paper Table 4: 1770 kN for MS3, within 2 %)
+    np.testing.assert_allclose(rec.tension[0, :, -1], 1.770e6, rtol=0.02)
+
+
+@pytest.mark.slow
+def test_heavier_lines_reduce_offsets_and_raise_tensions():
+    out = {}
+    for ms in ("MS1", "MS3", "MS6"):
+        m = moored(ms)
+        out[ms] = sim.simulate_batch(sea(1, wind_speed=[11.4], wind_dir=[270.0], wave_dir=[270.0]),
+                                     case_ids=np.array([1]), mooring_system="ref", seed=3, model_inputs=m,
+                                     sim_cfg={**SIM, "duration": 300.0, "transient": 300.0}, fatigue_cfg=None,
+                                     stats_cfg=STATS)
+    surge = [out[k]["surge_mean"][0] for k in ("MS1", "MS3", "MS6")]
+    ten = [out[k]["tension_mean"][0].max() for k in ("MS1", "MS3", "MS6")]
+    assert surge[0] > surge[1] > surge[2] > 0
+    assert ten[0] < ten[1] < ten[2]

@@ -51,6 +51,7 @@ __all__ = [
     "output_attrs",
     "prepare_model",
     "build_model",
+    "attach_mooring",
     "build_forcing",
     "integrate",
     "summarise",
@@ -1163,14 +1164,6 @@ def prepare_model(
     rho = float(env_cfg.get("rho_water", 1025.0))
     g = float(env_cfg.get("gravity", env.G))
     depth = float(env_cfg.get("water_depth", 200.0))
-    props = moor.line_properties(mooring_row, water_density=rho, gravity=g)
-    layout = moor.oc4_layout(mooring_cfg)
-    kind = moor.mooring_settings(mooring_cfg).model
-    proto = moor.make_mooring(kind, props, layout, mooring_cfg, batch=1)
-    fair = np.asarray(layout.fairleads_body, dtype=float)
-    rest = _rest_mooring_load(proto, fair)
-    static = np.zeros(6)
-    static[[2, 3, 4]] = -rest[[2, 3, 4]]
     strips = _morison_strips(pm, platform_cfg, rho)
     v = np.arange(-40.0, 80.0 + 1e-9, float(sim_cfg.get("thrust_speed_step", 0.02)))
     thrust = np.asarray(turbine.thrust(pm.turbine, v), dtype=float) if hasattr(pm, "turbine") else np.asarray(
@@ -1180,7 +1173,7 @@ def prepare_model(
     damp = np.diag(np.asarray(sim_cfg.get("extra_damping", [0.0] * 6), dtype=float))
     hub = _hub_position(pm, platform_cfg)
     km = np.diag(np.asarray(platform_cfg.get("mooring_stiffness_diag", [0.0] * 6), dtype=float))
-    return build_model(
+    platform = build_model(
         mass=np.asarray(pm.mass, float) + np.asarray(pm.added_mass_inf, float),
         stiffness=np.asarray(pm.stiffness, float),
         damping=damp,
@@ -1190,8 +1183,44 @@ def prepare_model(
         strip_pos=strips[0], strip_axis=strips[1], strip_cdn=strips[2], strip_cda=strips[3],
         hub=hub, thrust_speed=v, thrust_force=thrust,
         filt_a=fa, filt_b=fb, filt_c=fc, filt_d=fd,
-        fairleads=fair, depth=depth, rho=rho, gravity=g,
-        mooring_kind=kind, mooring_stiffness=km,
-        mooring_args=(props, layout, mooring_cfg, proto), static_load=static,
+        depth=depth, rho=rho, gravity=g, mooring_stiffness=km,
+    )
+    return attach_mooring(platform, mooring_row, mooring_cfg)
+
+
+def attach_mooring(model: ModelInputs, mooring_row: Mapping[str, Any], mooring_cfg: Mapping[str, Any] | None) -> ModelInputs:
+    """Give a platform model its mooring system (lines, layout, model kind, trim load).
+
+    Parameters
+    ----------
+    model : ModelInputs
+        The platform (any mooring fields are replaced).
+    mooring_row : mapping
+        The system's row of ``config/mooring_systems.tsv`` (with ``mooring_system``).
+    mooring_cfg : mapping or None
+        The ``mooring:`` config section; ``mooring.model`` picks quasi-static or dynamic lines.
+
+    Returns
+    -------
+    ModelInputs
+        With ``mooring_kind``, ``mooring_args``, ``fairleads``, ``line_info`` and the
+        ``static_load`` that trims the platform to even keel at its design draft with the
+        lines at rest (the ballast adjustment of each mooring system).
+    """
+    from moorlife import mooring as moor
+
+    props = moor.line_properties(mooring_row, water_density=model.rho, gravity=model.gravity)
+    layout = moor.oc4_layout(mooring_cfg)
+    if abs(layout.depth - model.depth) > 1e-6:
+        raise ValueError(f"mooring.water_depth = {layout.depth} m differs from the platform's water depth {model.depth} m")
+    kind = moor.mooring_settings(mooring_cfg).model
+    proto = moor.make_mooring(kind, props, layout, mooring_cfg, batch=1)
+    fair = np.ascontiguousarray(layout.fairleads_body, dtype=float)
+    rest = _rest_mooring_load(proto, fair)
+    static = np.zeros(6)
+    static[[2, 3, 4]] = -rest[[2, 3, 4]]
+    return replace(
+        model, mooring_kind=kind, mooring_args=(props, layout, mooring_cfg, proto), fairleads=fair,
+        static_load=static,
         line_info={"link_diameter": props.link_diameter, "mbs": props.MBS, "chain": props.chain},
     )
