@@ -43,6 +43,7 @@ __all__ = [
     "lmoments",
     "gev_fit",
     "gev_fit_lmoments",
+    "gev_from_lmoments",
     "gev_cdf",
     "gev_quantile",
     "gev_mode",
@@ -156,21 +157,22 @@ def _tau3_of_k(k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return t, dt
 
 
-def gev_fit_lmoments(maxima: npt.ArrayLike) -> GEVParams:
-    """GEV parameters by L-moments (Hosking 1985, refined by Newton iterations).
+def gev_from_lmoments(l1: npt.ArrayLike, l2: npt.ArrayLike, t3: npt.ArrayLike) -> GEVParams:
+    """GEV parameters with given L-moments (Hosking 1985, refined by Newton iterations).
 
     Parameters
     ----------
-    maxima : array_like, shape (..., n)
+    l1, l2, t3 : array_like, broadcastable
+        L-location, L-scale and L-skewness.
 
     Returns
     -------
     GEVParams
-        Arrays of shape ``(...)``; ``k`` is clipped to ``[-0.99, 0.99]``. A constant
-        sample gives ``scale = 0``, ``loc`` = the value.
+        ``k`` is clipped to ``[-0.99, 0.99]``; ``l2 == 0`` (or NaN ``t3``) gives
+        ``scale = 0``, ``loc = l1``, ``k = 0``.
     """
-    l1, l2, t3 = lmoments(maxima)
-    const = ~(l2 > 0)
+    l1, l2, t3 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (l1, l2, t3)))
+    const = ~(l2 > 0) | ~np.isfinite(t3)
     t3 = np.where(const, 0.0, t3)
     c = 2.0 / (3.0 + t3) - math.log(2.0) / math.log(3.0)
     k = 7.8590 * c + 2.9554 * c**2
@@ -185,6 +187,21 @@ def gev_fit_lmoments(maxima: npt.ArrayLike) -> GEVParams:
     scale = np.where(const, 0.0, scale)
     loc = np.where(const, l1, loc)
     return GEVParams(np.asarray(loc), np.asarray(scale), np.asarray(np.where(const, 0.0, k)))
+
+
+def gev_fit_lmoments(maxima: npt.ArrayLike) -> GEVParams:
+    """GEV parameters by the method of L-moments (:func:`lmoments`, :func:`gev_from_lmoments`).
+
+    Parameters
+    ----------
+    maxima : array_like, shape (..., n)
+
+    Returns
+    -------
+    GEVParams
+        Arrays of shape ``(...)``. A constant sample gives ``scale = 0``, ``loc`` = the value.
+    """
+    return gev_from_lmoments(*lmoments(maxima))
 
 
 def gev_fit(maxima: npt.ArrayLike, method: str = "lmoments") -> GEVParams:
