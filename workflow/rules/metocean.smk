@@ -1,1 +1,35 @@
-# Stage 'metocean': rules are added when the stage lands (see the issue tracker).
+# Stage 'metocean': the hourly hindcast (paper section 2, Fig. 3). The default is the seeded
+# BiMEP-like synthetic hindcast; `hindcast.source: file` loads an ERA5/NORA3/mapped file instead.
+
+
+def _hindcast_file(wildcards):
+    """The hindcast file when it is the source (so editing it reruns the rule), else nothing."""
+    h = config["hindcast"]
+    return [h["path"]] if h["source"] == "file" and h.get("path") else []
+
+
+rule metocean:
+    input:
+        _hindcast_file,
+    output:
+        directory("results/metocean/hindcast.zarr"),
+    params:
+        hindcast=config["hindcast"],
+        seed=config["seed"],
+    log:
+        "logs/metocean/hindcast.log",
+    script:
+        "../scripts/metocean.py"
+
+
+rule metocean_figures:
+    input:
+        "results/metocean/hindcast.zarr",
+    output:
+        wind_rose=report("results/figures/wind_rose.png", category="Metocean", caption="../report/wind_rose.rst"),
+        wave_rose=report("results/figures/wave_rose.png", category="Metocean", caption="../report/wave_rose.rst"),
+        hs_tp=report("results/figures/hs_tp_scatter.png", category="Metocean", caption="../report/hs_tp_scatter.rst"),
+    log:
+        "logs/metocean/figures.log",
+    script:
+        "../scripts/metocean_figures.py"
