@@ -69,6 +69,12 @@ def _bump(f, f0, sd, var):
     return var * np.exp(-0.5 * ((f - f0) / sd) ** 2) / (sd * np.sqrt(2.0 * np.pi))
 
 
+def _pm(f, fp=0.1):
+    """Pierson-Moskowitz shape with peak at ``fp`` Hz (0 at f = 0)."""
+    fs = np.maximum(f, 1e-3)
+    return np.where(f > 0, fs**-5.0 * np.exp(-1.25 * (fp / fs) ** 4), 0.0)
+
+
 def _multiset(r, m, c):
     return Counter(zip(np.asarray(r, float).tolist(), np.asarray(m, float).tolist(), np.asarray(c, float).tolist()))
 
@@ -392,7 +398,7 @@ def test_narrowband_closed_form_matches_rainflow_within_3_percent():
     ("name", "psd", "tol"),
     [
         # single broad wave-frequency peak (JONSWAP-like Pierson-Moskowitz shape, Tp 10 s)
-        ("pm", lambda f: np.where(f > 0, f**-5.0 * np.exp(-1.25 * (0.1 / np.maximum(f, 1e-9)) ** 4), 0.0) * 1e-2, 0.05),
+        ("pm", lambda f: _pm(f) * 1e-2, 0.05),
         # mooring-like bimodal tension: slow drift at 0.012 Hz + wave frequency at 0.1 Hz
         ("bimodal", lambda f: _bump(f, 0.012, 0.002, 50.0) + _bump(f, 0.1, 0.015, 100.0), 0.10),
     ],
@@ -410,3 +416,55 @@ def test_dirlik_against_rainflow_on_broadband_records(name, psd, tol):
     assert d_dk == pytest.approx(d_rf, rel=tol)
     assert abs(d_dk - d_rf) < abs(d_nb - d_rf)
     assert d_nb > d_rf  # narrow-band is conservative for broad-band records
+
+
+# --------------------------------------------------------------------------- life summary and adapters
+def test_annual_damage_from_hourly():
+    hourly = np.full((8766 * 2, 3), 1e-6)
+    hourly[:, 1] *= 2
+    assert fat.annual_damage(hourly).tolist() == pytest.approx([8766e-6, 2 * 8766e-6, 8766e-6])
+    with pytest.raises(ValueError, match="non-finite"):
+        fat.annual_damage(np.array([1.0, np.nan]))
+
+
+def test_life_summary_constant_rate_and_design_factor():
+    d = np.array([[0.01, 0.04, 0.02], [0.001, 0.0011, 0.0005]])  # (ms, line) per year
+    out = fat.life_summary(d, curve="sn", link_diameter=0.068, settings=fatigue_settings({}))
+    assert out["lifecycle_damage"] == pytest.approx(25.0 * d)
+    assert out["fatigue_life_years"] == pytest.approx(1.0 / d)
+    # dF = second / largest damage: 0.5 -> DFF 5; 1/1.1 -> 5 + 3 (0.909 - 0.8) / 0.2
+    assert out["damage_ratio"] == pytest.approx([0.5, 1 / 1.1])
+    assert out["design_fatigue_factor"] == pytest.approx([5.0, 5.0 + 3.0 * (1 / 1.1 - 0.8) / 0.2])
+    assert out["design_life_years"][0] == pytest.approx(1.0 / (5.0 * d[0]))
+    assert out["passes"].tolist() == [[False, False, False], [True, True, True]]
+    tn = fat.life_summary(d, curve="tn", link_diameter=0.068)
+    assert tn["design_fatigue_factor"].tolist() == [3.0, 3.0]
+
+
+def test_life_summary_with_corrosion_matches_the_step_integral():
+    d = np.array([0.01, 0.02])
+    st_ = fatigue_settings({})
+    out = fat.life_summary(d, curve="sn", link_diameter=0.068, settings=st_, corrosion=True)
+    expected = sum(5.0 * d * (0.068 / (0.068 - 0.2e-3 * a)) ** 6 for a in (0, 5, 10, 15, 20))
+    assert out["lifecycle_damage"] == pytest.approx(expected, rel=1e-12)
+    assert np.all(out["fatigue_life_years"] < 1.0 / d)
+    # the corrosion-raised damage is about 30-60 % above the uncorroded one for MS1 over 25 years
+    assert 1.2 < (out["lifecycle_damage"] / (25 * d))[0] < 1.6
+
+
+def test_xarray_adapters_match_numpy():
+    xr = pytest.importorskip("xarray")
+    from moorlife.stats import gev_mpm, gev_mpm_xr
+
+    rng = np.random.default_rng(0)
+    x = 1e6 + 1e5 * rng.standard_normal((2, 3, 3000))
+    da = xr.DataArray(x, dims=("case", "line", "t"), coords={"t": np.arange(3000) * 0.2}, attrs={"units": "N"})
+    ds = fat.hourly_damage_xr(da, link_diameter=0.068, mbs=5.42e6)
+    ref = hourly_damage(x, 600.0, link_diameter=0.068, mbs=5.42e6)
+    assert ds.damage_sn.dims == ("case", "line")
+    assert np.array_equal(ds.damage_sn.values, ref[0]) and np.array_equal(ds.damage_tn.values, ref[1])
+    g = gev_mpm_xr(da.chunk({"case": 1}), block=20.0).compute()
+    assert np.array_equal(g.mpm.values, gev_mpm(x, 0.2, block=20.0)[0]) and g.mpm.attrs["units"] == "N"
+    bad = da.assign_coords(t=np.r_[0.0, np.cumsum(rng.uniform(0.1, 0.3, 2999))])
+    with pytest.raises(ValueError, match="uniformly spaced"):
+        fat.hourly_damage_xr(bad, link_diameter=0.068, mbs=5.42e6)

@@ -49,11 +49,14 @@ __all__ = [
     "tn_damage",
     "cycle_damage",
     "hourly_damage",
+    "hourly_damage_xr",
     "corrosion_damage_factor",
     "lifetime_damage_with_corrosion",
     "fatigue_life",
     "design_fatigue_factor",
     "adjacent_damage_ratio",
+    "annual_damage",
+    "life_summary",
     "spectral_moments",
     "narrowband_damage",
     "dirlik_damage",
@@ -756,6 +759,47 @@ def hourly_damage(
     return (out_sn * scale).reshape(lead), (out_tn * scale).reshape(lead)
 
 
+def hourly_damage_xr(tension: Any, *, dim: str = "t", **kwargs: Any) -> Any:
+    """xarray adapter of :func:`hourly_damage`.
+
+    Parameters
+    ----------
+    tension : xarray.DataArray
+        Tension in N with a uniformly spaced time coordinate ``dim`` in s.
+    dim : str
+        The time dimension (core dimension, removed from the result).
+    **kwargs
+        Keyword arguments of :func:`hourly_damage` (``link_diameter``, ``mbs``, ...);
+        ``duration`` defaults to ``n * dt`` from the coordinate.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``damage_sn`` and ``damage_tn`` (per hour of sea state) over the other dimensions.
+    """
+    import xarray as xr
+
+    if "duration" not in kwargs:
+        t = np.asarray(tension[dim].values, dtype=float)
+        dt = np.diff(t)
+        if t.size < 2 or not np.allclose(dt, dt[0], rtol=1e-6):
+            raise ValueError(f"tension: coordinate {dim!r} must be uniformly spaced seconds to infer the duration")
+        kwargs["duration"] = float(t.size * dt[0])
+    duration = kwargs.pop("duration")
+    sn, tn = xr.apply_ufunc(
+        lambda x: hourly_damage(x, duration, **kwargs),
+        tension,
+        input_core_dims=[[dim]],
+        output_core_dims=[[], []],
+        dask="parallelized",
+        output_dtypes=[float, float],
+    )
+    ds = xr.Dataset({"damage_sn": sn, "damage_tn": tn})
+    ds["damage_sn"].attrs = {"units": "1", "long_name": "S-N (DNVGL-OS-E301) Miner damage per hour of sea state"}
+    ds["damage_tn"].attrs = {"units": "1", "long_name": "T-N (API RP 2SK) Miner damage per hour of sea state"}
+    return ds
+
+
 # ---------------------------------------------------------------------------------------
 # corrosion over the life, fatigue life, design factors
 # ---------------------------------------------------------------------------------------
@@ -981,6 +1025,114 @@ def adjacent_damage_ratio(damage: npt.ArrayLike, axis: int = -1) -> np.ndarray:
     second = np.take(d, -2, axis=axis)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(top > 0, second / np.where(top > 0, top, 1.0), 0.0)
+
+
+def annual_damage(hourly: npt.ArrayLike, axis: int = 0, hours_per_year: float = HOURS_PER_YEAR) -> np.ndarray:
+    """Mean damage per year from damage per hour of a chronological hindcast.
+
+    Parameters
+    ----------
+    hourly : array_like, shape (..., ntime, ...)
+        Damage of every hindcast hour along ``axis`` (NaN not allowed).
+    axis : int
+        The time axis.
+    hours_per_year : float
+        8766 (365.25 days).
+
+    Returns
+    -------
+    ndarray
+        ``sum(hourly) / (ntime / hours_per_year)``, the shape without ``axis``.
+    """
+    h = np.asarray(hourly, dtype=float)
+    if not np.all(np.isfinite(h)):
+        raise ValueError("hourly damage contains non-finite values")
+    return h.sum(axis=axis) * hours_per_year / h.shape[axis]
+
+
+def life_summary(
+    damage_per_year: npt.ArrayLike,
+    *,
+    curve: str,
+    link_diameter: float,
+    chain: str = "studless",
+    settings: FatigueSettings | None = None,
+    corrosion: bool = False,
+    mean_tension: npt.ArrayLike | None = None,
+    line_axis: int = -1,
+) -> dict[str, np.ndarray]:
+    """Life-cycle damage, fatigue life and the design-factor check of a set of lines.
+
+    Parameters
+    ----------
+    damage_per_year : array_like, shape (..., nline)
+        Damage rate of the new chain per line (lines along ``line_axis``).
+    curve : {"sn", "tn"}
+        Curve family; selects the design-factor rule (``settings.rule_sn|rule_tn``) and the
+        corrosion exponent.
+    link_diameter : float
+        New link diameter in m.
+    chain : {"studless", "stud"}
+    settings : FatigueSettings, optional
+        From :func:`fatigue_settings` (defaults if omitted): design life, corrosion rate and
+        step, mean-stress correction, design-factor constants.
+    corrosion : bool
+        Apply the corrosion rate with its step rule (paper section 4.3); otherwise the
+        rate is constant (the paper's main results).
+    mean_tension : array_like, optional
+        Mean tension in N broadcastable to ``damage_per_year``; needed with corrosion and a
+        mean-stress correction (see :func:`corrosion_damage_factor`).
+    line_axis : int
+        Axis of the lines, for the DNV damage ratio ``dF`` (:func:`adjacent_damage_ratio`).
+
+    Returns
+    -------
+    dict of ndarray
+        ``lifecycle_damage`` (..., nline): damage accumulated over the design life;
+        ``fatigue_life_years`` (..., nline): age at which the damage reaches 1;
+        ``damage_ratio`` (...): ``dF``;
+        ``design_fatigue_factor`` (...): DFF of the system (DNV from ``dF``, or API);
+        ``design_life_years`` (..., nline): age at which DFF x damage reaches 1;
+        ``passes`` (..., nline): ``DFF x lifecycle_damage <= 1``.
+    """
+    st = settings or FatigueSettings()
+    d = np.moveaxis(np.asarray(damage_per_year, dtype=float), line_axis, -1)
+    if np.any(~np.isfinite(d)) or np.any(d < 0):
+        raise ValueError("damage_per_year must be finite and >= 0")
+    sn, tn = get_curves(chain, st.curves)
+    m = {"sn": sn.m, "tn": tn.m}.get(curve)
+    if m is None:
+        raise ValueError(f"curve must be 'sn' or 'tn', got {curve!r}")
+    ratio = adjacent_damage_ratio(d, axis=-1) if d.shape[-1] >= 2 else np.zeros(d.shape[:-1])
+    dff = st.design_factor(curve, ratio)
+    mt = None if mean_tension is None else np.moveaxis(np.broadcast_to(mean_tension, np.shape(damage_per_year)), line_axis, -1)
+    rate_factor = None
+    if corrosion and st.corrosion_rate > 0:
+        horizon = 0.95 * link_diameter / st.corrosion_rate
+
+        def rate_factor(ages: np.ndarray) -> np.ndarray:
+            a = np.minimum(ages, horizon).reshape((-1,) + (1,) * d.ndim)
+            return corrosion_damage_factor(
+                link_diameter, a, curve=curve, m=m, rate=st.corrosion_rate, mean_stress=st.mean_stress,
+                mean_tension=mt, ultimate=st.ultimate, yield_=st.yield_,
+            ) * np.ones(d.shape)  # fmt: skip
+
+    if rate_factor is None:
+        life_damage = d * st.design_life
+    else:
+        _, cum = lifetime_damage_with_corrosion(lambda a: d[None] * rate_factor(a), st.design_life, step=st.corrosion_step)
+        life_damage = cum[-1]
+    life = fatigue_life(d, rate_factor=rate_factor, step=st.corrosion_step)
+    design_life = fatigue_life(d, design_factor=dff[..., None], rate_factor=rate_factor, step=st.corrosion_step)
+    back = (lambda a: np.moveaxis(a, -1, line_axis))  # noqa: E731
+    return {
+        "lifecycle_damage": back(life_damage),
+        "fatigue_life_years": back(life),
+        "damage_ratio": ratio,
+        "design_fatigue_factor": dff,
+        "design_life_years": back(design_life),
+        "passes": back(dff[..., None] * life_damage <= 1.0),
+    }
 
 
 # ---------------------------------------------------------------------------------------

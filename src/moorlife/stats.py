@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -49,6 +50,7 @@ __all__ = [
     "gev_mode",
     "gev_of_maximum",
     "gev_mpm",
+    "gev_mpm_xr",
     "fit_correlation",
     "plotting_positions",
     "percentiles",
@@ -352,6 +354,46 @@ def gev_mpm(
     p = gev_fit(maxima, method)
     mpm = gev_mode(gev_of_maximum(p, duration / (ns * dt)))
     return mpm, fit_correlation(maxima, p)
+
+
+def gev_mpm_xr(
+    x: Any, *, dim: str = "t", block: float, duration: float | None = None, method: str = "lmoments"
+) -> Any:
+    """xarray adapter of :func:`gev_mpm`.
+
+    Parameters
+    ----------
+    x : xarray.DataArray
+        Records with a uniformly spaced time coordinate ``dim`` in s.
+    dim : str
+        The time dimension (removed from the result).
+    block, duration, method
+        As :func:`gev_mpm`.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``mpm`` (units of ``x``) and ``gev_corr`` over the other dimensions.
+    """
+    import xarray as xr
+
+    t = np.asarray(x[dim].values, dtype=float)
+    steps = np.diff(t)
+    if t.size < 2 or not np.allclose(steps, steps[0], rtol=1e-6):
+        raise ValueError(f"x: coordinate {dim!r} must be uniformly spaced seconds")
+    dt = float(steps[0])
+    mpm, corr = xr.apply_ufunc(
+        lambda a: gev_mpm(a, dt, block=block, duration=duration, method=method),
+        x,
+        input_core_dims=[[dim]],
+        output_core_dims=[[], []],
+        dask="parallelized",
+        output_dtypes=[float, float],
+    )
+    out = xr.Dataset({"mpm": mpm, "gev_corr": corr})
+    out["mpm"].attrs = {"units": x.attrs.get("units", ""), "long_name": "most probable maximum (GEV of block maxima)"}
+    out["gev_corr"].attrs = {"units": "1", "long_name": "correlation of empirical and GEV-fitted block maxima"}
+    return out
 
 
 def percentiles(x: npt.ArrayLike, q: npt.ArrayLike) -> np.ndarray:
