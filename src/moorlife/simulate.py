@@ -314,6 +314,9 @@ def _interp_omega(values: np.ndarray, omega: np.ndarray, target: np.ndarray) -> 
     return out
 
 
+_KIN_CHUNK = 24  # kinematic series synthesised per FFT call
+
+
 def _drag_kinematics_tf(model: ModelInputs, k: np.ndarray, omega: np.ndarray, theta: float) -> np.ndarray:
     """Velocity transfer functions at the strips, ``(nk, ns, 3)`` complex, per metre of amplitude."""
     p = model.strip_pos
@@ -387,9 +390,12 @@ def build_forcing(
         if ns:
             tf = _drag_kinematics_tf(model, k, waves.omega, theta)  # (nk, ns, 3)
             coeff = (waves.amplitude[b][:, None, None] * tf).reshape(waves.omega.size, ns * 3).T
-            series = env.synthesise(coeff, waves.index, grid, n=grid.n_fft)  # (ns*3, n_fft)
             idx = np.minimum(np.arange(nkin) * kin_every, grid.n_fft - 1)
-            kin[b] = series[:, idx].T.reshape(nkin, ns, 3).astype(np.float32)
+            flat = kin[b].reshape(nkin, ns * 3)
+            for c0 in range(0, ns * 3, _KIN_CHUNK):  # bounded temporaries
+                c1 = min(c0 + _KIN_CHUNK, ns * 3)
+                series = env.synthesise(coeff[c0:c1], waves.index, grid, n=grid.n_fft)
+                flat[:, c0:c1] = series[:, idx].T
     wdir = flow_vector(np.asarray(wind_dir_deg, dtype=float)).reshape(nb, 2)
     return Forcing(grid=grid, force=force, wind=np.asarray(wind, dtype=float), wind_dir=wdir,
                    kin_every=int(kin_every), kinematics=kin)
@@ -611,6 +617,59 @@ def _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
             zf[b, r] = y0[12 + nr + r]
 
 
+@numba.njit(cache=True)
+def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, motion, accel, tension, fmoor6, acc,
+             force, wind, wdir, kin, kin_every, minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc,
+             spos, saxis, scdn, scda, hub, tv, tf, fa, fb, fc, fd):  # pragma: no cover - numba
+    """One coupled step ``j -> j + 1`` of the batch, with recording (kept sample ``i``).
+
+    The platform is driven over the step by the mean of the mooring forces at the start
+    (``f_prev``) and at the predicted end (``f_new``); ``f_prev`` then takes ``f_new``.
+    ``ten`` is the line tension at ``t_{j+1}`` (kept as sample ``i + 1``).
+    """
+    nb = q.shape[0]
+    nt = motion.shape[2]
+    if coupled:
+        for b in range(nb):
+            for l in range(f_prev.shape[1]):
+                for c in range(3):
+                    f_prev[b, l, c] = 0.5 * (f_prev[b, l, c] + f_new[b, l, c])
+        _moor_generalised(q, f_prev, fair, fmoor6)
+        for b in range(nb):
+            for l in range(f_prev.shape[1]):
+                for c in range(3):
+                    f_prev[b, l, c] = f_new[b, l, c]
+        for b in range(nb):
+            for d in range(6):
+                fmoor6[b, d] += static[d]
+        if 0 <= i + 1 < nt:
+            for b in range(nb):
+                for l in range(ten.shape[1]):
+                    tension[b, l, i + 1] = ten[b, l]
+    if i >= 0:
+        for b in range(nb):
+            for d in range(6):
+                motion[b, d, i] = q[b, d]
+    _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every, minv, K, D, ra_ptr, ra_idx,
+              ra_val, rb, rc, spos, saxis, scdn, scda, hub, tv, tf, fa, fb, fc, fd, acc)
+    if i >= 0:
+        hx, hy, hz = hub[0], hub[1], hub[2]
+        for b in range(nb):
+            accel[b, 0, i] = acc[b, 0] + acc[b, 4] * hz - acc[b, 5] * hy
+            accel[b, 1, i] = acc[b, 1] + acc[b, 5] * hx - acc[b, 3] * hz
+            accel[b, 2, i] = acc[b, 2] + acc[b, 3] * hy - acc[b, 4] * hx
+
+
+@numba.njit(cache=True)
+def _predict_fairleads(q, v, fair, dt, r_out, v_out):  # pragma: no cover - numba
+    """Fairlead positions extrapolated to ``t + dt`` and velocities, ``(B, 3, 3)``."""
+    _fairlead_motion(q, v, fair, r_out, v_out)
+    for b in range(q.shape[0]):
+        for l in range(fair.shape[0]):
+            for c in range(3):
+                r_out[b, l, c] += dt * v_out[b, l, c]
+
+
 def _csr(a: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Compressed sparse rows of a dense matrix (exact zeros dropped)."""
     nr = a.shape[0]
@@ -751,37 +810,24 @@ def integrate(
             model.damping, ra[0], ra[1], ra[2], model.rad_b, model.rad_c, model.strip_pos, model.strip_axis,
             model.strip_cdn, model.strip_cda, hub, model.thrust_speed, model.thrust_force,
             model.filt_a, model.filt_b, model.filt_c, model.filt_d)
-    f_mid = np.empty((nb, 3, 3))
+    coupled = not linear
+    f_new = np.zeros((nb, 3, 3))
+    ten = np.zeros((nb, 3))
+    static = np.asarray(model.static_load, dtype=float)
+    if coupled and j0 == 0:
+        tension[:, :, 0] = moor.tension(mstate)
     for j in range(n):
-        i = j - j0
-        if i >= 0:
-            motion[:, :, i] = q
-            if not linear:
-                tension[:, :, i] = moor.tension(mstate)
-        if not linear:
-            # predictor: advance the lines to the fairlead position extrapolated to t + dt, and
-            # drive the platform over the step with the mean of the start and predicted forces
-            _fairlead_motion(q, v, fair, r_f, v_f)
-            r_f += dt * v_f
-            f_new, mstate = moor.step(mstate, r_f, v_f, dt)
-            np.add(f_prev, f_new, out=f_mid)
-            f_mid *= 0.5
-            f_prev[...] = f_new
-            _moor_generalised(q, f_mid, fair, fmoor6)
-            fmoor6 += model.static_load
-        _rk4_step(j, dt, q, v, xr, zf, fmoor6, *args, acc)
-        if i >= 0:
-            _hub_acceleration(acc, hub, accel[:, :, i])
+        if coupled:
+            # predictor: advance the lines to the fairlead positions extrapolated to t + dt
+            _predict_fairleads(q, v, fair, dt, r_f, v_f)
+            f_step, mstate = moor.step(mstate, r_f, v_f, dt)
+            f_new[...] = f_step
+            ten[...] = moor.tension(mstate)
+        _advance(j, j - j0, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, motion, accel, tension,
+                 fmoor6, acc, *args)
     if linear:
         tension[:] = np.nan
     return Record(dt=dt, motion=motion, accel=accel, tension=tension)
-
-
-def _hub_acceleration(acc: np.ndarray, hub: np.ndarray, out: np.ndarray) -> None:
-    """Hub acceleration ``a + alpha x hub`` (linearised) of ``acc (B, 6)`` into ``out (B, 3)``."""
-    out[:, 0] = acc[:, 0] + acc[:, 4] * hub[2] - acc[:, 5] * hub[1]
-    out[:, 1] = acc[:, 1] + acc[:, 5] * hub[0] - acc[:, 3] * hub[2]
-    out[:, 2] = acc[:, 2] + acc[:, 3] * hub[1] - acc[:, 4] * hub[0]
 
 
 # --------------------------------------------------------------------------------------
@@ -1151,7 +1197,7 @@ def prepare_model(
     mooring_cfg : mapping or None
         The ``mooring:`` config section; ``mooring.model`` selects quasi-static or dynamic lines.
     sim_cfg : mapping
-        The ``simulation:`` section (``extra_damping``, ``thrust_speed_step``).
+        The ``simulation:`` section (``extra_damping``, ``drag_strip_length``).
 
     Returns
     -------
@@ -1164,14 +1210,18 @@ def prepare_model(
     rho = float(env_cfg.get("rho_water", 1025.0))
     g = float(env_cfg.get("gravity", env.G))
     depth = float(env_cfg.get("water_depth", 200.0))
-    strips = _morison_strips(pm, platform_cfg, rho)
+    members = platform_cfg.get("members")
+    if not members:
+        raise ValueError("platform config: no 'members' (needed for the Morison drag strips)")
+    strip_len = max(float(sim_cfg.get("drag_strip_length", 4.0)), float(platform_cfg.get("morison_strip_length", 1.0)))
+    strips = _strips_from_members(members, strip_len, rho)
     v = np.arange(-40.0, 80.0 + 1e-9, float(sim_cfg.get("thrust_speed_step", 0.02)))
     thrust = np.asarray(turbine.thrust(pm.turbine, v), dtype=float) if hasattr(pm, "turbine") else np.asarray(
         turbine.thrust(v), dtype=float)
     fa, fb, fc, fd = _pitch_filter(pm)
     ss_a, ss_b, ss_c = (np.asarray(getattr(pm, k), dtype=float) for k in ("ss_A", "ss_B", "ss_C"))
     damp = np.diag(np.asarray(sim_cfg.get("extra_damping", [0.0] * 6), dtype=float))
-    hub = _hub_position(pm, platform_cfg)
+    hub = np.array([0.0, 0.0, float(platform_cfg["turbine"]["hub_height"])])
     km = np.diag(np.asarray(platform_cfg.get("mooring_stiffness_diag", [0.0] * 6), dtype=float))
     platform = build_model(
         mass=np.asarray(pm.mass, float) + np.asarray(pm.added_mass_inf, float),
