@@ -362,3 +362,24 @@ def test_discrete_states_contract(tmp_path):
     back = open_zarr(tmp_path / "discrete.zarr")
     np.testing.assert_allclose(back["probability"].values, ds["probability"].values)
     assert back.attrs["hs_edges"] == [0.0, 1.5, 3.0, 4.5]
+
+
+def test_figures_render_from_round_tripped_stores(tmp_path):
+    from moorlife.plots.selection import plot_discrete_states, plot_selection_cloud
+
+    hc = make_hindcast(3000, seed=6)
+    write_zarr(select_cases(hc, n_train=25, n_validate=8, seed=1), tmp_path / "cases.zarr")
+    write_zarr(discrete_states(hc), tmp_path / "discrete.zarr")
+    cases, disc = open_zarr(tmp_path / "cases.zarr"), open_zarr(tmp_path / "discrete.zarr")
+    fig = plot_selection_cloud(hc, cases)
+    panels = [ax for ax in fig.axes if ax.axison and ax.collections and ax.get_label() != "<colorbar>"]
+    assert len(panels) == 10  # every pair of the five variables
+    sizes = [len(c.get_offsets()) for c in panels[0].collections if type(c).__name__ == "PathCollection"]
+    assert 25 in sizes and 8 in sizes  # training and validation points drawn
+    fig.savefig(tmp_path / "cloud.png", dpi=40)
+    fig = plot_discrete_states(hc, disc)
+    bars = fig.axes[2].patches
+    assert len(bars) == disc.sizes[names.BIN]
+    np.testing.assert_allclose([b.get_height() for b in bars], 100.0 * disc["probability"].values)
+    fig.savefig(tmp_path / "discrete.png", dpi=40)
+    assert (tmp_path / "cloud.png").stat().st_size > 0

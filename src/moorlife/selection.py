@@ -30,6 +30,8 @@ contract (``results/selection/cases.zarr`` and ``results/selection/discrete.zarr
 
 from __future__ import annotations
 
+import logging
+import time as _time
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
@@ -61,6 +63,8 @@ __all__ = [
     "select_cases",
     "discrete_states",
 ]
+
+_log = logging.getLogger(__name__)
 
 #: Rules for choosing the validation states (``config.yaml: selection.validation_rule``).
 VALIDATION_RULES: tuple[str, ...] = ("random", "mda")
@@ -741,10 +745,14 @@ def select_cases(
     lo, span = scaling_from(pts, mask)
     i_hs = names.METOCEAN_VARS.index("hs")
     start = int(np.argmax(pts[:, i_hs]))  # the paper: start from the largest Hs
+    t0 = _time.perf_counter()
     train = mda(pts, n_train, is_direction=mask, start=start, lo=lo, span=span)
+    _log.info("%s: MDA picked %d of %d states in %.2f s (start: largest hs, row %d)",
+              source, n_train, pts.shape[0], _time.perf_counter() - t0, start)
     valid = select_validation(
         pts, n_validate, exclude=train, is_direction=mask, rule=rule, seed=seed, lo=lo, span=span
     )
+    _log.info("%s: %d validation states by rule %r (seed %d)", source, valid.size, rule, seed)
     index = np.concatenate([train, valid]).astype(np.int64)
     x = normalise(pts, mask, lo, span)
     x_train = x[train]
@@ -863,6 +871,7 @@ def discrete_states(
         data_vars[f"{axis}_bin"] = (names.BIN, labels[axis][cls], {"long_name": f"{axis} class ({unit})"})
         data_vars[f"{axis}_class"] = (names.BIN, cls, {"units": "1", "long_name": f"{axis} class index"})
     ds = xr.Dataset(data_vars, coords={names.BIN: np.arange(sm.hours.size, dtype=np.int64)})
+    _log.info("%s: %d non-empty bins of %d", source, sm.hours.size, len(hs_edges) * len(wind_edges) * len(tp_edges))
     ds.attrs.update(
         {
             "method": "scatter matrix binned by hs, then wind_speed, then tp (Barrera et al. 2019, section 4.1)",

@@ -1,1 +1,48 @@
-# Stage 'selection': rules are added when the stage lands (see the issue tracker).
+# Stage 'selection': the sea states to simulate (maximum dissimilarity, paper section 3.2) and the
+# conventional discrete scatter matrix the life-cycle method is compared against (section 4.1).
+
+
+rule selection:
+    input:
+        "results/metocean/hindcast.zarr",
+    output:
+        directory("results/selection/cases.zarr"),
+    params:
+        n_train=config["selection"]["n_train"],
+        n_validate=config["selection"]["n_validate"],
+        rule=config["selection"]["validation_rule"],
+        seed=config["seed"],
+    log:
+        "logs/selection/selection.log",
+    script:
+        "../scripts/selection.py"
+
+
+rule discrete:
+    input:
+        "results/metocean/hindcast.zarr",
+    output:
+        directory("results/selection/discrete.zarr"),
+    params:
+        hs_edges=config["selection"]["discrete"]["hs_edges"],
+        wind_edges=config["selection"]["discrete"]["wind_edges"],
+        tp_edges=config["selection"]["discrete"]["tp_edges"],
+        sector=config["selection"]["discrete"]["direction_sector"],
+    log:
+        "logs/selection/discrete.log",
+    script:
+        "../scripts/discrete.py"
+
+
+rule selection_figures:
+    input:
+        hindcast="results/metocean/hindcast.zarr",
+        cases="results/selection/cases.zarr",
+        discrete="results/selection/discrete.zarr",
+    output:
+        cloud=report("results/figures/selection_cloud.png", category="Selection"),
+        discrete=report("results/figures/discrete_states.png", category="Selection"),
+    log:
+        "logs/selection/figures.log",
+    script:
+        "../scripts/selection_figures.py"
