@@ -622,11 +622,8 @@ def _where(source: str, column: str, label: str, rows: np.ndarray, times: np.nda
 def _interp_gaps(values: np.ndarray, is_dir: bool) -> np.ndarray:
     ok = np.isfinite(values)
     x = np.arange(values.size)
-    if is_dir:
-        rad = np.deg2rad(values[ok])
-        s = np.interp(x, x[ok], np.sin(rad))
-        c = np.interp(x, x[ok], np.cos(rad))
-        return np.rad2deg(np.arctan2(s, c)) % 360.0
+    if is_dir:  # linear along the shorter arc between the neighbours
+        return np.interp(x, x[ok], np.unwrap(values[ok], period=360.0)) % 360.0
     return np.interp(x, x[ok], values[ok])
 
 
@@ -808,7 +805,7 @@ def _check_values(
             i = int(bad[0])
             raise HindcastError(
                 f"{_where(source, v, lab[v], rows, times, i)}: value {vals[v][i]:g} exceeds the plausible "
-                f"maximum {hi} ({hint}); fix the units or raise hindcast.cleaning.limits"
+                f"maximum {hi:g} ({hint}); fix the units or raise hindcast.cleaning.limits"
             )
     if "wind_speed" in vals:
         bad = np.flatnonzero(vals["wind_speed"] < 0.0)
