@@ -402,7 +402,7 @@ def augmented_matrix(d2: np.ndarray, basis: np.ndarray, shape: float, smoothing:
     """
     m, p = basis.shape
     out = np.zeros((m + p, m + p))
-    out[:m, :m] = np.exp(-d2 / (shape * shape))
+    out[:m, :m] = gaussian(d2, shape)
     if smoothing:
         out[np.arange(m), np.arange(m)] += smoothing
     out[:m, m:] = basis
@@ -436,13 +436,11 @@ def solve_weights(matrix: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, n
     return sol[:m], sol[m:]
 
 
-def _lu_inverse(matrix: np.ndarray) -> tuple[np.ndarray, float]:
-    lu, piv = sla.lu_factor(matrix, check_finite=False)
-    anorm = np.linalg.norm(matrix, 1)
-    (gecon,) = sla.get_lapack_funcs(("gecon",), (lu,))
-    rcond, _ = gecon(lu, anorm, norm="1")
-    inv = sla.lu_solve((lu, piv), np.eye(matrix.shape[0]), check_finite=False)
-    return inv, float(rcond)
+def _inverse(matrix: np.ndarray) -> tuple[np.ndarray, float]:
+    """Inverse and exact reciprocal 1-norm condition number ``1 / (|M|_1 |M^-1|_1)``."""
+    inv = np.linalg.inv(matrix)
+    rcond = 1.0 / (np.linalg.norm(matrix, 1) * np.linalg.norm(inv, 1))
+    return inv, float(rcond) if np.isfinite(rcond) else 0.0
 
 
 def rippa_errors(inverse: np.ndarray, values: np.ndarray) -> np.ndarray:
@@ -504,7 +502,7 @@ def loo_curve(
     rcond = np.zeros(q.size)
     for i, qi in enumerate(q):
         try:
-            inv, rc = _lu_inverse(augmented_matrix(d2, basis, qi, smoothing))
+            inv, rc = _inverse(augmented_matrix(d2, basis, qi, smoothing))
         except (np.linalg.LinAlgError, ValueError):
             continue
         rcond[i] = rc
@@ -648,7 +646,7 @@ def fit_rbf(
     for qi in np.unique(q):
         cols = np.flatnonzero(q == qi)
         mat = augmented_matrix(d2, basis, float(qi), smoothing)
-        inv, _ = _lu_inverse(mat)
+        inv, _ = _inverse(mat)
         w, c = solve_weights(mat, y[:, cols])
         weights[:, cols] = w
         poly[:, cols] = c

@@ -1,0 +1,242 @@
+"""Tests of moorlife.lifecycle on small synthetic hindcasts and simulation stores with known answers."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+import xarray as xr
+
+from moorlife import fatigue, lifecycle, names
+
+LINES = list(names.LINES)
+
+
+def _hindcast(n: int = 3000, seed: int = 0) -> xr.Dataset:
+    rng = np.random.default_rng(seed)
+    data = {
+        "wind_speed": rng.uniform(0, 25, n),
+        "wind_dir": rng.uniform(0, 360, n),
+        "hs": rng.uniform(0.3, 6, n),
+        "tp": rng.uniform(4, 18, n),
+        "wave_dir": rng.uniform(0, 360, n),
+    }
+    t = np.arange(n).astype("timedelta64[h]") + np.datetime64("2000-01-01T00")
+    return xr.Dataset({k: ("time", v, names.attrs_for(k)) for k, v in data.items()}, coords={"time": t})
+
+
+def _cases(hc: xr.Dataset, n_train: int = 90, n_val: int = 25, seed: int = 1) -> xr.Dataset:
+    idx = np.random.default_rng(seed).choice(hc.sizes["time"], n_train + n_val, replace=False)
+    ds = xr.Dataset({v: ("case", hc[v].values[idx]) for v in names.METOCEAN_VARS}, coords={"case": np.arange(idx.size)})
+    ds["hindcast_index"] = ("case", idx)
+    ds["role"] = ("case", np.array(["train"] * n_train + ["validate"] * n_val))
+    return ds
+
+
+def _sims(cases: xr.Dataset, damage=(2e-6, 5e-6, 1e-6)) -> xr.Dataset:
+    """Outputs with known closed forms: linear offsets, constant damage per line."""
+    hs, tp, w = cases["hs"].values, cases["tp"].values, cases["wind_speed"].values
+    n = hs.size
+    ds = xr.Dataset(coords={"case": cases["case"].values, "line": LINES})
+    ds["surge_mpm"] = ("case", 2.0 + 0.5 * hs + 0.1 * tp)
+    ds["sway_mpm"] = ("case", 1.0 + 0.2 * w)
+    ds["tension_mpm"] = (("case", "line"), np.outer(1e6 + 1e5 * hs, [1.0, 1.2, 0.9]))
+    ds["damage_sn"] = (("case", "line"), np.tile(np.asarray(damage), (n, 1)))
+    ds["damage_tn"] = (("case", "line"), 0.5 * np.tile(np.asarray(damage), (n, 1)))
+    ds.attrs["mooring_system"] = "MS2"
+    return ds
+
+
+SETTINGS = lifecycle.RBFSettings(shape_mode="fixed", outputs=lifecycle.DEFAULT_OUTPUTS)
+
+
+@pytest.fixture(scope="module")
+def rebuilt():
+    hc = _hindcast()
+    cases = _cases(hc)
+    sims = _sims(cases)
+    ds = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=SETTINGS, n_suggest=5)
+    return hc, cases, sims, ds
+
+
+def test_constant_hourly_damage_gives_n_hours_times_value(rebuilt):
+    hc, _, _, ds = rebuilt
+    n = hc.sizes["time"]
+    expect = np.array([[2e-6, 5e-6, 1e-6], [1e-6, 2.5e-6, 0.5e-6]]) * n
+    np.testing.assert_allclose(ds["lifecycle_damage"].sel(curve=["sn", "tn"]).values, expect, rtol=1e-9)
+    np.testing.assert_allclose(ds["damage_per_year"].values, expect / n * 8766.0, rtol=1e-9)
+    np.testing.assert_allclose(ds["fatigue_life_years"].values, 1.0 / (expect / n * 8766.0), rtol=1e-9)
+    assert ds["damage_sn"].dims == ("time", "line") and ds.sizes["time"] == n
+
+
+def test_linear_outputs_rebuilt_exactly_everywhere(rebuilt):
+    hc, _, _, ds = rebuilt
+    np.testing.assert_allclose(ds["surge_mpm"].values, 2.0 + 0.5 * hc["hs"].values + 0.1 * hc["tp"].values, atol=1e-8)
+    np.testing.assert_allclose(ds["tension_mpm"].sel(line="M2").values, 1.2 * (1e6 + 1e5 * hc["hs"].values), rtol=1e-10)
+    np.testing.assert_allclose(ds["validation_r"].sel(output=["surge_mpm", "sway_mpm", "tension_mpm/M1"]).values, 1.0,
+                               atol=1e-10)
+    assert ds["tension_mpm"].attrs["units"] == "N"
+
+
+def test_design_check_uses_fatigue_rules(rebuilt):
+    _, _, _, ds = rebuilt
+    fs = fatigue.fatigue_settings({})
+    # S-N: DNV rule, dF = 2e-6 / 5e-6 = 0.4 -> DFF 5; T-N: API -> 3
+    assert float(ds["damage_ratio"].sel(curve="sn")) == pytest.approx(0.4)
+    assert float(ds["design_fatigue_factor"].sel(curve="sn")) == 5.0
+    assert float(ds["design_fatigue_factor"].sel(curve="tn")) == 3.0
+    util = ds["utilisation"].sel(curve="sn", line="M2")
+    assert float(util) == pytest.approx(5.0 * 5e-6 * 8766.0 * fs.design_life, rel=1e-9)
+    assert int(ds["passes"].sel(curve="sn", line="M2")) == int(float(util) <= 1)
+
+
+def test_design_check_dnv_factor_rises_with_adjacent_damage():
+    fs = fatigue.fatigue_settings({})
+    out = lifecycle.design_check(np.array([1e-2, 0.9e-2, 0.1e-2]), 25.0, "sn", fs)
+    assert float(out["damage_ratio"]) == pytest.approx(0.9)
+    assert float(out["design_fatigue_factor"]) == pytest.approx(5 + 3 * 0.1 / 0.2)
+    np.testing.assert_allclose(out["utilisation"], 6.5 * 25 * np.array([1e-2, 0.9e-2, 0.1e-2]))
+    np.testing.assert_array_equal(out["passes"], [False, False, True])
+
+
+def test_validation_metrics_closed_form():
+    sim = np.array([[1.0, 2.0], [2.0, 4.0], [3.0, 6.0], [4.0, 8.0]])
+    pred = np.column_stack([2 * sim[:, 0] + 1, sim[:, 1]])
+    m = lifecycle.validation_metrics(pred, sim)
+    np.testing.assert_allclose(m["r"], [1.0, 1.0])
+    np.testing.assert_allclose(m["slope"], [2.0, 1.0])
+    np.testing.assert_allclose(m["intercept"], [1.0, 0.0], atol=1e-12)
+    np.testing.assert_allclose(m["bias"], [3.5, 0.0])
+    np.testing.assert_allclose(m["rmse"][0], np.sqrt(np.mean((sim[:, 0] + 1) ** 2)))
+    np.testing.assert_allclose(m["sum_error"], [24 / 10 - 1, 0.0], atol=1e-12)
+    noisy = lifecycle.validation_metrics(sim[:, 0] + np.array([0.1, -0.1, 0.1, -0.1]), sim[:, 0])
+    assert 0.99 < noisy["r"][0] < 1.0
+
+
+def test_discrete_baseline_arithmetic_and_difference_sign():
+    p = np.array([0.5, 0.3, 0.2])
+    hourly = np.array([[1.0, 2.0], [3.0, 4.0], [5.0, 6.0]]) * 1e-6
+    got = lifecycle.discrete_damage(p, hourly, 1000.0)
+    np.testing.assert_allclose(got, [(0.5 + 0.9 + 1.0) * 1e-3, (1.0 + 1.2 + 1.2) * 1e-3])
+    assert lifecycle.difference_pct(10.0, 8.0) == pytest.approx(20.0)  # discrete underestimates -> positive
+    assert lifecycle.difference_pct(10.0, 12.0) == pytest.approx(-20.0)
+    with pytest.raises(ValueError, match="sum to 1"):
+        lifecycle.discrete_damage([0.5, 0.3], hourly[:2], 10.0)
+    bad = hourly.copy()
+    bad[1, 0] = -1e-6
+    with pytest.raises(ValueError, match=r"index \(1, 0\)"):
+        lifecycle.discrete_damage(p, bad, 10.0)
+
+
+def test_discrete_table_and_summary(rebuilt):
+    hc, _, _, ds = rebuilt
+    states = xr.Dataset({"probability": ("bin", [0.25, 0.75])}, coords={"bin": [0, 1]})
+    dsims = xr.Dataset(
+        {"damage_sn": (("bin", "line"), [[1e-6, 4e-6, 1e-6], [2e-6, 4e-6, 1e-6]]),
+         "damage_tn": (("bin", "line"), [[1e-6, 2e-6, 1e-6], [1e-6, 2e-6, 1e-6]])},
+        coords={"bin": [0, 1], "line": LINES},
+    )
+    n = hc.sizes["time"]
+    dd = lifecycle.discrete_damage_table(states, dsims, n)
+    assert float(dd["discrete_damage"].sel(curve="sn", line="M1")) == pytest.approx(1.75e-6 * n)
+    mooring = pd.DataFrame({"mass_kg_per_m": [125.6], "link_diameter_mm": [79.0]}, index=["MS2"])
+    table = lifecycle.summary_table({"MS2": ds}, {"MS2": dd}, mooring)
+    assert len(table) == 6
+    r = table[(table.line == "M1") & (table.curve == "sn")].iloc[0]
+    assert r.difference_pct == pytest.approx(100 * (2e-6 - 1.75e-6) / 2e-6, rel=1e-9)
+    assert r.fatigue_life_low <= r.fatigue_life_years <= r.fatigue_life_high
+    for col in ("mooring_system", "line", "curve", "lifecycle_damage", "discrete_damage", "difference_pct",
+                "fatigue_life_years", "design_fatigue_factor", "passes"):
+        assert col in table.columns
+
+
+def test_recommend_picks_the_lightest_passing_system():
+    rows = []
+    for ms, mass, ok_sn, ok_tn in (("MS1", 92, False, True), ("MS2", 125.6, True, True), ("MS3", 200, True, True),
+                                   ("MS0", 50, True, False)):
+        for line in LINES:
+            rows += [{"mooring_system": ms, "line": line, "curve": "sn", "passes": ok_sn, "mass_kg_per_m": mass},
+                     {"mooring_system": ms, "line": line, "curve": "tn", "passes": ok_tn, "mass_kg_per_m": mass}]
+    t = pd.DataFrame(rows)
+    assert lifecycle.recommend(t) == "MS2"
+    assert lifecycle.recommend(t, curves=["sn"]) == "MS0"
+    assert lifecycle.recommend(t, curves=["tn"]) == "MS1"
+    t.loc[t.mooring_system.isin(["MS2", "MS3"]) & (t.line == "M2"), "passes"] = False
+    assert lifecycle.recommend(t) is None
+
+
+def test_seed_lives_and_band():
+    lives = lifecycle.seed_lives([1e-5, 2e-5])
+    np.testing.assert_allclose(lives, [1 / (1e-5 * 8766), 1 / (2e-5 * 8766)])
+    lo, hi = lifecycle.life_band(10.0, 0.25)
+    assert lo == pytest.approx(8.0) and hi == pytest.approx(10 / 0.75)
+    assert lifecycle.life_band(10.0, 1.5)[1] == np.inf
+
+
+def test_mean_stress_table_reproduces_paper_table8_static_rows():
+    # Barrera et al. (2019) Table 8 (static position), from Table 4 pretension and link diameter.
+    mooring = pd.DataFrame(
+        {"pretension_kN": [811.0, 1770.0, 5675.0], "link_diameter_mm": [68.0, 100.0, 178.0]}, index=["MS1", "MS3", "MS6"]
+    )
+    t = lifecycle.mean_stress_table(mooring)
+    expect = {"MS1": (111.6563, 0.8837, 0.8405, 0.9865), "MS3": (112.6817, 0.8826, 0.8390, 0.9862),
+              "MS6": (114.0265, 0.8812, 0.8371, 0.9859)}
+    for ms, (s, g, so, ge) in expect.items():
+        r = t[(t.mooring_system == ms) & (t.block == "static")].iloc[0]
+        assert round(r.mean_stress_mpa, 4) == s
+        assert (round(r.goodman, 4), round(r.soderberg, 4), round(r.gerber, 4)) == (g, so, ge)
+    t2 = lifecycle.mean_stress_table(mooring, {"MS1": 1.0e6})
+    assert set(t2.block) == {"static", "lifecycle mean"}
+    assert np.isnan(t2[(t2.block == "lifecycle mean") & (t2.mooring_system == "MS3")].goodman.iloc[0])
+
+
+def test_corrosion_evolution():
+    fs = fatigue.fatigue_settings({})
+    out = lifecycle.corrosion_evolution(0.02, 0.079, 25.0, curve="sn", settings=fs)
+    np.testing.assert_allclose(out["years"], [0, 5, 10, 15, 20, 25])
+    np.testing.assert_allclose(out["intact"], 0.02 * out["years"])
+    # first step at the new diameter, second at d0 - 1 mm: factor (d0 / d)^(2 m)
+    np.testing.assert_allclose(out["corroded"][1], 0.1)
+    np.testing.assert_allclose(out["corroded"][2] - out["corroded"][1], 0.1 * (0.079 / 0.078) ** 6)
+    assert np.all(np.diff(out["factor"]) > 0)
+    none = lifecycle.corrosion_evolution(0.02, 0.079, 25.0, curve="tn",
+                                         settings=fatigue.fatigue_settings({"corrosion": {"rate": 0.0}}))
+    np.testing.assert_allclose(none["corroded"], none["intact"])
+
+
+def test_suggestions_target_uncertain_sparse_regions(rebuilt):
+    hc, cases, sims, ds = rebuilt
+    picks = ds["suggested_hour"].values
+    assert picks.size == 5 and np.unique(picks).size == 5
+    assert picks[0] == int(np.argmax(ds["error_indicator"].values))
+    train_idx = cases["hindcast_index"].values[cases["role"].values == "train"]
+    assert not np.isin(picks, train_idx).any()  # training hours have zero distance -> never suggested
+
+
+def test_rippa_mode_and_other_transform_are_reported():
+    hc = _hindcast(800, seed=5)
+    cases = _cases(hc, 60, 15, seed=6)
+    sims = _sims(cases)
+    rng = np.random.default_rng(7)
+    dmg = 1e-6 * (cases["hs"].values[:, None] ** 3) * np.array([1.0, 2.0, 0.5]) * (1 + 0.05 * rng.random((75, 3)))
+    sims["damage_sn"] = (("case", "line"), dmg)
+    settings = lifecycle.RBFSettings(grid_n=8, outputs=lifecycle.DEFAULT_OUTPUTS)
+    ds = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=0)
+    assert np.all(ds["validation_r"].sel(output="damage_sn/M2") > 0.95)
+    assert np.isfinite(ds["validation_r_other_transform"].sel(output="damage_sn/M2"))
+    assert np.isnan(ds["validation_r_other_transform"].sel(output="surge_mpm"))
+    assert ds.attrs["rbf_shape_mode"] == "rippa"
+    assert np.all(np.isin(ds["shape_parameter"].values, np.geomspace(0.02, 1.0, 8)))
+
+
+def test_bad_simulation_values_are_named():
+    hc = _hindcast(300)
+    cases = _cases(hc, 40, 5)
+    sims = _sims(cases)
+    sims["surge_mpm"][7] = np.nan
+    with pytest.raises(ValueError, match="surge_mpm is not finite for case 7"):
+        lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=SETTINGS, n_suggest=0)
+    with pytest.raises(ValueError, match="index"):
+        lifecycle.life_damage(np.array([[1.0, -1.0]]))
+    with pytest.raises(ValueError, match="lifecycle.rbf.shape"):
+        lifecycle.rbf_settings({"shape": "magic"})
