@@ -468,3 +468,21 @@ def test_xarray_adapters_match_numpy():
     bad = da.assign_coords(t=np.r_[0.0, np.cumsum(rng.uniform(0.1, 0.3, 2999))])
     with pytest.raises(ValueError, match="uniformly spaced"):
         fat.hourly_damage_xr(bad, link_diameter=0.068, mbs=5.42e6)
+
+
+@pytest.mark.parametrize("method", ["none", "goodman", "soderberg", "gerber"])
+@pytest.mark.parametrize("residue", ["half", "close"])
+def test_compiled_damage_path_equals_cycle_damage(method, residue):
+    """hourly_damage (numba, one pass) against rainflow + cycle_damage (numpy) on a random walk."""
+    rng = np.random.default_rng(4)
+    x = 2e6 + np.cumsum(rng.normal(0.0, 2e4, 5000))
+    r, m, c = rainflow(x, residue=residue)
+    ref = fat.cycle_damage(r, m, c, link_diameter=0.1, mbs=1.0944e7, chain="stud", mean_stress=method)
+    got = hourly_damage(x, 500.0, link_diameter=0.1, mbs=1.0944e7, chain="stud", mean_stress=method, residue=residue)
+    assert got[0] == pytest.approx(ref[0] * 7.2, rel=1e-12) and got[1] == pytest.approx(ref[1] * 7.2, rel=1e-12)
+
+
+def test_mean_stress_limit_in_a_record_is_reported():
+    x = np.array([[1e6, 1.2e6, 1e6, 1.1e6], [5e6, 6e6, 5.5e6, 6.5e6]])  # record 1: ~800 MPa mean on 68 mm
+    with pytest.raises(ValueError, match=r"record \(1,\).*soderberg limit"):
+        hourly_damage(x, 10.0, link_diameter=0.068, mbs=5.4e6, mean_stress="soderberg")

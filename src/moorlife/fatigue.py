@@ -367,6 +367,44 @@ def _count_turning(rev, close):  # pragma: no cover - compiled
     return rng[:nc], mean[:nc], cnt[:nc]
 
 
+@njit(cache=True)
+def _damage_records(x2d, area, mbs, a_d, m_sn, k_tn, m_tn, ms_n, ms_r, close):  # pragma: no cover - compiled
+    """Rainflow + S-N / T-N Miner sums of each row of ``x2d`` (tension in N).
+
+    ``ms_n`` = 0 (no mean-stress correction), 1 (Goodman / Soderberg) or 2 (Gerber) with
+    ``ms_r`` the reference strength in MPa. A cycle whose mean stress reaches ``ms_r``
+    makes the S-N damage ``inf`` (reported by the caller).
+    """
+    nrec = x2d.shape[0]
+    dsn = np.empty(nrec)
+    dtn = np.empty(nrec)
+    cube_sn = m_sn == 3.0
+    cube_tn = m_tn == 3.0
+    for i in range(nrec):
+        x = x2d[i]
+        r, mu, c = _count_turning(x[_turning_indices(x)], close)
+        inv_a = 1e-6 / area[i]
+        inv_b = 1.0 / mbs[i]
+        acc_sn = 0.0
+        acc_tn = 0.0
+        for j in range(r.shape[0]):
+            s = r[j] * inv_a
+            if ms_n > 0:
+                sm = mu[j] * inv_a
+                if sm > 0.0:
+                    f = 1.0 - (sm / ms_r) ** ms_n
+                    if f <= 0.0:
+                        acc_sn = np.inf
+                        continue
+                    s = s / f
+            t = r[j] * inv_b
+            acc_sn += c[j] * (s * s * s if cube_sn else s**m_sn)
+            acc_tn += c[j] * (t * t * t if cube_tn else t**m_tn)
+        dsn[i] = acc_sn / a_d
+        dtn[i] = acc_tn / k_tn
+    return dsn, dtn
+
+
 def _as_series(series: npt.ArrayLike, name: str = "series") -> np.ndarray:
     x = np.ascontiguousarray(series, dtype=np.float64)
     if x.ndim != 1:
@@ -733,29 +771,31 @@ def hourly_damage(
         raise ValueError(f"mean_stress must be one of {MEAN_STRESS_METHODS}, got {mean_stress!r}")
     lead = t.shape[:-1]
     d, m = corroded_properties(link_diameter, mbs, corrosion_years, corrosion_rate)
-    d = np.broadcast_to(d, lead)
-    m = np.broadcast_to(m, lead)
-    flat = t.reshape(-1, t.shape[-1])
+    area = np.ascontiguousarray(np.broadcast_to(stress_area(d), lead), dtype=np.float64).reshape(-1)
+    rbs = np.ascontiguousarray(np.broadcast_to(m, lead), dtype=np.float64).reshape(-1)
+    if np.any(~(rbs > 0)):
+        raise ValueError(f"mbs must be positive (N), got {mbs!r}")
+    flat = np.ascontiguousarray(t.reshape(-1, t.shape[-1]))
     bad = ~np.isfinite(flat)
     if bad.any():
         row, col = np.argwhere(bad)[0]
         rec = tuple(int(v) for v in np.unravel_index(int(row), lead))
         raise ValueError(f"tension: non-finite value at record {rec}, sample {int(col)}")
-    get_curves(chain, curves)  # validate once
+    sn, tn = get_curves(chain, curves)
+    ms_n, ms_r = {"none": (0, 1.0), "goodman": (1, ultimate), "soderberg": (1, yield_), "gerber": (2, ultimate)}[
+        mean_stress
+    ]
+    out_sn, out_tn = _damage_records(
+        flat, area, rbs, sn.a_d, sn.m, tn.k, tn.m, ms_n, float(ms_r), residue == "close"
+    )
+    if np.any(np.isinf(out_sn)):
+        i = int(np.flatnonzero(np.isinf(out_sn))[0])
+        rec = tuple(int(v) for v in np.unravel_index(i, lead))
+        raise ValueError(
+            f"tension record {rec}: a cycle mean stress reaches the {mean_stress} limit "
+            f"({ms_r} MPa): no fatigue capacity left"
+        )
     scale = SECONDS_PER_HOUR / float(duration)
-    out_sn = np.empty(flat.shape[0])
-    out_tn = np.empty(flat.shape[0])
-    d_flat = d.reshape(-1)
-    m_flat = m.reshape(-1)
-    close = residue == "close"
-    for i in range(flat.shape[0]):
-        x = np.ascontiguousarray(flat[i])
-        r, mu, c = _count_turning(x[_turning_indices(x)], close)
-        out_sn[i], out_tn[i] = cycle_damage(
-            r, mu, c,
-            link_diameter=float(d_flat[i]), mbs=float(m_flat[i]), chain=chain, curves=curves,
-            mean_stress=mean_stress, ultimate=ultimate, yield_=yield_,
-        )  # fmt: skip
     return (out_sn * scale).reshape(lead), (out_tn * scale).reshape(lead)
 
 
