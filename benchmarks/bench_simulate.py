@@ -66,10 +66,10 @@ def synthetic_platform(platform_cfg: dict) -> sim.ModelInputs:
 def platform_model(platform_cfg: dict, row: dict, kind: str) -> tuple[sim.ModelInputs, str]:
     nc = ROOT / "results/hydro/platform.nc"
     try:
-        from moorlife.io.simulation import open_platform
+        from moorlife.io.platform import open_platform_nc
 
         if nc.exists():
-            m = sim.prepare_model(open_platform(nc), platform_cfg, row, {"model": kind}, {})
+            m = sim.prepare_model(open_platform_nc(nc), platform_cfg, row, {"model": kind}, {})
             return m, f"BEM model {nc.relative_to(ROOT)}"
     except ImportError:
         pass

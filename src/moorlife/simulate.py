@@ -52,6 +52,7 @@ __all__ = [
     "prepare_model",
     "build_model",
     "attach_mooring",
+    "platform_from",
     "build_forcing",
     "integrate",
     "summarise",
@@ -276,30 +277,12 @@ class Forcing:
 
 
 def _interp_heading(table: np.ndarray, headings: np.ndarray, theta: float) -> np.ndarray:
-    """Linear interpolation of ``table (nw, nh, 6)`` at propagation angle ``theta`` (periodic)."""
-    nh = headings.size
-    if nh == 1:
+    """Linear interpolation of ``table (nw, nh, 6)`` at propagation angle ``theta`` on the circle."""
+    from moorlife.hydro import interp_heading
+
+    if headings.size == 1:
         return table[:, 0, :]
-    span = headings[-1] - headings[0]
-    periodic = span >= 2 * np.pi - 1e-6 or abs(span + (headings[1] - headings[0]) - 2 * np.pi) < 1e-6
-    th = theta
-    if periodic:
-        th = headings[0] + (theta - headings[0]) % (2 * np.pi)
-        hh = np.concatenate([headings, [headings[0] + 2 * np.pi]])
-        tt = np.concatenate([table, table[:, :1, :]], axis=1)
-        if hh[-2] >= hh[-1] - 1e-9:  # grid already closed (e.g. -pi..pi)
-            hh, tt = headings, table
-    else:
-        th = (theta - headings[0] + np.pi) % (2 * np.pi) - np.pi + headings[0]
-        if th < headings[0] - 1e-9 or th > headings[-1] + 1e-9:
-            raise ValueError(
-                f"wave propagation angle {np.rad2deg(theta):.1f} deg is outside the BEM heading range "
-                f"[{np.rad2deg(headings[0]):.1f}, {np.rad2deg(headings[-1]):.1f}] deg"
-            )
-        hh, tt = headings, table
-    j = int(np.clip(np.searchsorted(hh, th) - 1, 0, hh.size - 2))
-    w = (th - hh[j]) / (hh[j + 1] - hh[j])
-    return (1 - w) * tt[:, j, :] + w * tt[:, j + 1, :]
+    return interp_heading(headings, table, float(theta))
 
 
 def _interp_omega(values: np.ndarray, omega: np.ndarray, target: np.ndarray) -> np.ndarray:
@@ -1203,39 +1186,52 @@ def prepare_model(
     -------
     ModelInputs
     """
-    from moorlife import hydro, mooring as moor, turbine
+    from moorlife import hydro
 
     pm = hydro.load_platform_model(platform_ds, platform_cfg)
-    env_cfg = dict(platform_cfg.get("environment", {}))
-    rho = float(env_cfg.get("rho_water", 1025.0))
-    g = float(env_cfg.get("gravity", env.G))
-    depth = float(env_cfg.get("water_depth", 200.0))
+    return attach_mooring(platform_from(pm, platform_cfg, sim_cfg), mooring_row, mooring_cfg)
+
+
+def platform_from(pm: Any, platform_cfg: Mapping[str, Any], sim_cfg: Mapping[str, Any]) -> ModelInputs:
+    """Integrator inputs of the platform alone (no mooring lines) from a ``hydro.PlatformModel``.
+
+    * The excitation is conjugated: ``hydro`` stores WAMIT's ``exp(+i omega t)`` convention,
+      the simulator uses ``exp(-i omega t)`` (:mod:`moorlife.environment`).
+    * Morison strips are cut from ``platform_cfg["members"]`` at ``simulation.drag_strip_length``
+      (the wave kinematics hardly vary over a few metres; fewer strips, less memory).
+    * Thrust is ``turbine.thrust`` (cut-in/out ramps included) tabulated every 0.02 m/s.
+    * The pitch-band filter is ``turbine.notch_filter`` at the platform's pitch frequency.
+    * ``mooring_stiffness`` is the linearised OC4 mooring of ``platform.yaml``, used only by
+      the linear verification runs.
+    """
+    from moorlife import turbine
+
+    rho = float(pm.rho)
     members = platform_cfg.get("members")
     if not members:
         raise ValueError("platform config: no 'members' (needed for the Morison drag strips)")
     strip_len = max(float(sim_cfg.get("drag_strip_length", 4.0)), float(platform_cfg.get("morison_strip_length", 1.0)))
     strips = _strips_from_members(members, strip_len, rho)
-    v = np.arange(-40.0, 80.0 + 1e-9, float(sim_cfg.get("thrust_speed_step", 0.02)))
-    thrust = np.asarray(turbine.thrust(pm.turbine, v), dtype=float) if hasattr(pm, "turbine") else np.asarray(
-        turbine.thrust(v), dtype=float)
-    fa, fb, fc, fd = _pitch_filter(pm)
-    ss_a, ss_b, ss_c = (np.asarray(getattr(pm, k), dtype=float) for k in ("ss_A", "ss_B", "ss_C"))
+    v = np.arange(-40.0, 80.0 + 1e-9, 0.02)
+    thrust = turbine.thrust(v, pm.ct_wind_speed, pm.ct, rho_air=pm.rho_air, rotor_area=pm.rotor_area,
+                            cut_in=pm.cut_in, cut_out=pm.cut_out, shutdown_ramp=pm.shutdown_ramp,
+                            startup_ramp=pm.startup_ramp)
+    filt = turbine.notch_filter(pm.pitch_filter_centre, pm.pitch_filter_quality)
     damp = np.diag(np.asarray(sim_cfg.get("extra_damping", [0.0] * 6), dtype=float))
-    hub = np.array([0.0, 0.0, float(platform_cfg["turbine"]["hub_height"])])
-    km = np.diag(np.asarray(platform_cfg.get("mooring_stiffness_diag", [0.0] * 6), dtype=float))
-    platform = build_model(
+    return build_model(
         mass=np.asarray(pm.mass, float) + np.asarray(pm.added_mass_inf, float),
         stiffness=np.asarray(pm.stiffness, float),
         damping=damp,
-        rad_a=ss_a, rad_b=ss_b, rad_c=ss_c,
-        omega=np.asarray(pm.omega, float), headings=np.asarray(pm.headings, float),
-        excitation=np.asarray(pm.excitation), drift=np.asarray(pm.drift, float),
+        rad_a=pm.ss_A, rad_b=pm.ss_B, rad_c=pm.ss_C,
+        omega=pm.omega, headings=pm.headings,
+        excitation=np.conj(np.asarray(pm.excitation)), drift=pm.drift,
         strip_pos=strips[0], strip_axis=strips[1], strip_cdn=strips[2], strip_cda=strips[3],
-        hub=hub, thrust_speed=v, thrust_force=thrust,
-        filt_a=fa, filt_b=fb, filt_c=fc, filt_d=fd,
-        depth=depth, rho=rho, gravity=g, mooring_stiffness=km,
+        hub=np.asarray(pm.hub_point, float), thrust_speed=v, thrust_force=thrust,
+        filt_a=filt.A, filt_b=np.asarray(filt.B, float).reshape(-1, 1), filt_c=np.asarray(filt.C, float).reshape(1, -1),
+        filt_d=np.array([[float(filt.D)]]),
+        depth=float(pm.water_depth), rho=rho, gravity=float(pm.g),
+        mooring_stiffness=np.asarray(pm.mooring_stiffness, float),
     )
-    return attach_mooring(platform, mooring_row, mooring_cfg)
 
 
 def attach_mooring(model: ModelInputs, mooring_row: Mapping[str, Any], mooring_cfg: Mapping[str, Any] | None) -> ModelInputs:

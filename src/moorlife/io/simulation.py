@@ -11,18 +11,10 @@ from typing import Any
 import xarray as xr
 
 from moorlife import names
-from moorlife.io import open_zarr, read_yaml
+from moorlife.io import open_zarr
+from moorlife.io.platform import open_platform_nc, read_platform_config
 
-__all__ = ["open_platform", "simulate_store"]
-
-
-def open_platform(path: str | os.PathLike[str]) -> xr.Dataset:
-    """Load ``results/hydro/platform.nc`` into memory (and close the file)."""
-    try:
-        with xr.open_dataset(path) as ds:
-            return ds.load()
-    except FileNotFoundError:
-        raise FileNotFoundError(f"{path}: no platform model; run the 'hydro' rule first") from None
+__all__ = ["simulate_store"]
 
 
 def simulate_store(
@@ -57,8 +49,8 @@ def simulate_store(
     cases = open_zarr(cases_path)
     if dim not in cases.dims:
         raise ValueError(f"{cases_path}: expected a dimension {dim!r}, found {tuple(cases.dims)}")
-    platform_ds = open_platform(platform_nc)
-    platform_cfg = read_yaml(platform_yaml)
+    platform_ds = open_platform_nc(platform_nc)
+    platform_cfg = read_platform_config(platform_yaml)
     row = {**dict(mooring_row), "mooring_system": mooring_system}
     model = simulate.prepare_model(platform_ds, platform_cfg, row, mooring_cfg, sim_cfg)
     log.info("%s: %s mooring, %d sea states along %r", mooring_system, model.mooring_kind, cases.sizes[dim], dim)
