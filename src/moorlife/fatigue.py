@@ -405,6 +405,14 @@ def _damage_records(x2d, area, mbs, a_d, m_sn, k_tn, m_tn, ms_n, ms_r, close):  
     return dsn, dtn
 
 
+@njit(cache=True)
+def _first_nonfinite(x):  # pragma: no cover - compiled
+    for i in range(x.shape[0]):
+        if not np.isfinite(x[i]):
+            return i
+    return -1
+
+
 def _as_series(series: npt.ArrayLike, name: str = "series") -> np.ndarray:
     x = np.ascontiguousarray(series, dtype=np.float64)
     if x.ndim != 1:
@@ -776,9 +784,9 @@ def hourly_damage(
     if np.any(~(rbs > 0)):
         raise ValueError(f"mbs must be positive (N), got {mbs!r}")
     flat = np.ascontiguousarray(t.reshape(-1, t.shape[-1]))
-    bad = ~np.isfinite(flat)
-    if bad.any():
-        row, col = np.argwhere(bad)[0]
+    first_bad = _first_nonfinite(flat.reshape(-1))
+    if first_bad >= 0:
+        row, col = divmod(first_bad, flat.shape[1])
         rec = tuple(int(v) for v in np.unravel_index(int(row), lead))
         raise ValueError(f"tension: non-finite value at record {rec}, sample {int(col)}")
     sn, tn = get_curves(chain, curves)
