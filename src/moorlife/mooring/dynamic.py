@@ -1,0 +1,682 @@
+"""Dynamic lumped-mass mooring lines, linearly implicit (Rosenbrock ROS2) time stepping.
+
+Model (the MoorDyn formulation, Hall & Goupee 2015, without bending): each line of
+unstretched length ``L`` is cut into ``N`` equal segments joined at ``N + 1`` nodes (node 0
+at the anchor, node ``N`` at the fairlead). Per segment: axial tension
+``EA (l - l0) / l0`` (zero when slack) and internal damping ``c * dl/dt`` with
+``c = zeta * sqrt(EA * m)`` (MoorDyn's ``BA = -zeta``). Per node (half segments at the ends):
+submerged weight (mass minus displaced water of the equivalent diameter), Morison drag on
+the velocity relative to still water, normal ``0.5 rho Cd D l |v_n| v_n`` and tangential
+``0.5 rho CdAx pi D l |v_t| v_t``, added mass ``rho V (Ca (I - t t') + CaAx t t')``, and
+seabed contact below ``z = -depth``: a vertical spring-damper ``(kb * penetration - cb * v_z)
+* D * l`` and horizontal friction ``min(mu Fn |v_h| / v_slip, mu Fn)`` against the sliding
+velocity (Coulomb friction regularised below ``v_slip``).
+
+Integrator and why. The chain is axially very stiff: the highest axial mode of a 42 m
+segment of MS2 chain has ``omega = 2 c / l0 ~ 120 rad/s`` (``c = sqrt(EA/m) ~ 2400 m/s``)
+and the seabed spring-damper adds ``cb D l / m ~ 300 1/s``. An explicit scheme (MoorDyn's
+RK2) must resolve those with ``dt ~ 1-5 ms``, although the response that matters (waves,
+slow drift) lives below ~2 rad/s. We integrate the stiff ODE with the two-stage,
+second-order, L-stable linearly implicit Rosenbrock method ROS2 (Verwer et al. 1999,
+``gamma = 1 + 1/sqrt(2)``): each step solves two linear systems with the same matrix
+``M - gamma h C - gamma^2 h^2 K`` (mass, damping and stiffness Jacobians of the node
+forces), which for a line is block tridiagonal (3x3 blocks) and is factorised once per step
+by block Thomas elimination (O(N)). No Newton iteration is needed; ROS2 keeps order 2 with
+an approximate Jacobian (W-method), so the drag and friction Jacobians may be crude. The
+unresolved axial modes are damped out (L-stability) instead of limiting the step, so the
+step is set by accuracy only: ``max_time_step`` (default 0.05 s, ~100 steps per 5 s wave
+period). Validation against MoorDyn: ``tests/test_mooring_dynamic.py``; cost:
+``benchmarks/bench_mooring.py``.
+
+The fairlead force returned to the platform is the net force of the line's end node
+(minus its inertia), as MoorDyn's coupled-point force: ``-(T + c dl/dt) t_end`` plus the end
+node's weight, drag and seabed force.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from moorlife.mooring.lines import Layout, LineProperties, MooringSettings
+from moorlife.mooring.quasistatic import catenary_profile, catenary_solve
+
+__all__ = [
+    "LineModel",
+    "DynamicState",
+    "DynamicMooring",
+    "line_model",
+    "initial_nodes",
+    "hermite",
+]
+
+GAMMA = 1.0 + 1.0 / math.sqrt(2.0)
+#: Height above the seabed (m) below which the implicit matrix includes the seabed contact,
+#: on top of the distance a descending node covers in one step.
+CONTACT_BAND = 0.01
+
+# indices into the parameter vector of the kernels
+_N, _L0, _EA, _CINT, _MLEN, _D, _RHO, _WLEN, _CDN, _CDT, _CAN, _CAT, _KB, _CB, _MU, _VSLIP, _ZBED, _BAND = range(18)
+_NPAR = 18
+
+
+@dataclass(frozen=True)
+class LineModel:
+    """Discretised line: the parameter vector of the numba kernels.
+
+    Attributes
+    ----------
+    params : numpy.ndarray, shape (18,)
+        ``N, l0, EA, c_int, m, D, rho_w, w, Cd, CdAx, Ca, CaAx, kb, cb, mu, v_slip, z_bed, band``
+        (SI units; ``c_int`` internal damping N s, ``w`` wet weight N/m, ``kb`` Pa/m, ``cb``
+        Pa s/m, ``z_bed = -depth``).
+    """
+
+    params: np.ndarray
+
+    @property
+    def n_segments(self) -> int:
+        """Number of segments ``N``."""
+        return int(self.params[_N])
+
+
+def line_model(props: LineProperties, layout: Layout, settings: MooringSettings) -> LineModel:
+    """The lumped-mass parameters of one line type on the given layout and settings."""
+    N = settings.n_segments
+    p = np.zeros(_NPAR)
+    p[_N] = N
+    p[_L0] = layout.length / N
+    p[_EA] = props.EA
+    p[_CINT] = settings.internal_damping_ratio * math.sqrt(props.EA * props.mass)
+    p[_MLEN] = props.mass
+    p[_D] = props.equivalent_diameter
+    p[_RHO] = settings.water_density
+    p[_WLEN] = (props.mass - settings.water_density * math.pi / 4 * props.equivalent_diameter**2) * settings.gravity
+    p[_CDN] = settings.cd_normal
+    p[_CDT] = settings.cd_axial
+    p[_CAN] = settings.ca_normal
+    p[_CAT] = settings.ca_axial
+    p[_KB] = settings.seabed_stiffness
+    p[_CB] = settings.seabed_damping
+    p[_MU] = settings.friction_coefficient
+    p[_VSLIP] = settings.friction_slip_velocity
+    p[_ZBED] = -layout.depth
+    p[_BAND] = CONTACT_BAND
+    p.setflags(write=False)
+    return LineModel(p)
+
+
+# --------------------------------------------------------------------------- 3x3 helpers
+@njit(cache=True, inline="always", fastmath=True, error_model="numpy")
+def _inv3(A, out):
+    a, b, c = A[0, 0], A[0, 1], A[0, 2]
+    d, e, f = A[1, 0], A[1, 1], A[1, 2]
+    g, h, i = A[2, 0], A[2, 1], A[2, 2]
+    c0 = e * i - f * h
+    c1 = f * g - d * i
+    c2 = d * h - e * g
+    det = a * c0 + b * c1 + c * c2
+    r = 1.0 / det
+    out[0, 0] = c0 * r
+    out[0, 1] = (c * h - b * i) * r
+    out[0, 2] = (b * f - c * e) * r
+    out[1, 0] = c1 * r
+    out[1, 1] = (a * i - c * g) * r
+    out[1, 2] = (c * d - a * f) * r
+    out[2, 0] = c2 * r
+    out[2, 1] = (b * g - a * h) * r
+    out[2, 2] = (a * e - b * d) * r
+
+
+# --------------------------------------------------------------------------- forces
+@njit(cache=True, fastmath=True, error_model="numpy")
+def _node_forces(r, v, p, hb, jac, F, M, Ks, Cs, Kz, C, segf, segq):
+    """Net node forces F (N+1, 3) and, for the implicit matrix, M, Ks, Cs, Kz, C."""
+    N = int(p[_N])
+    l0 = p[_L0]
+    EA = p[_EA]
+    cint = p[_CINT]
+    kax = EA / l0
+    for s in range(N):
+        dx = r[s + 1, 0] - r[s, 0]
+        dy = r[s + 1, 1] - r[s, 1]
+        dz = r[s + 1, 2] - r[s, 2]
+        l = math.sqrt(dx * dx + dy * dy + dz * dz)
+        qx, qy, qz = dx / l, dy / l, dz / l
+        ldot = qx * (v[s + 1, 0] - v[s, 0]) + qy * (v[s + 1, 1] - v[s, 1]) + qz * (v[s + 1, 2] - v[s, 2])
+        if l > l0:
+            T = kax * (l - l0)
+            kg = T / l
+            ka = kax
+        else:
+            T = 0.0
+            kg = 0.0
+            ka = 0.0
+        segf[s] = T + cint * ldot
+        segq[s, 0] = qx
+        segq[s, 1] = qy
+        segq[s, 2] = qz
+        if not jac:
+            continue
+        for a in range(3):
+            qa = segq[s, a]
+            for b in range(3):
+                qq = qa * segq[s, b]
+                Ks[s, a, b] = (ka - kg) * qq + (kg if a == b else 0.0)
+                Cs[s, a, b] = cint * qq
+    A = 0.25 * math.pi * p[_D] * p[_D]
+    rho = p[_RHO]
+    cdn = 0.5 * rho * p[_CDN] * p[_D]
+    cdt = 0.5 * rho * p[_CDT] * math.pi * p[_D]
+    zbed = p[_ZBED]
+    mu = p[_MU]
+    for i in range(N + 1):
+        ln = l0 if (0 < i < N) else 0.5 * l0
+        fx = fy = fz = 0.0
+        if i < N:
+            fx += segf[i] * segq[i, 0]
+            fy += segf[i] * segq[i, 1]
+            fz += segf[i] * segq[i, 2]
+        if i > 0:
+            fx -= segf[i - 1] * segq[i - 1, 0]
+            fy -= segf[i - 1] * segq[i - 1, 1]
+            fz -= segf[i - 1] * segq[i - 1, 2]
+        # node tangent
+        if i == 0:
+            tx, ty, tz = segq[0, 0], segq[0, 1], segq[0, 2]
+        elif i == N:
+            tx, ty, tz = segq[N - 1, 0], segq[N - 1, 1], segq[N - 1, 2]
+        else:
+            tx = r[i + 1, 0] - r[i - 1, 0]
+            ty = r[i + 1, 1] - r[i - 1, 1]
+            tz = r[i + 1, 2] - r[i - 1, 2]
+            tn = math.sqrt(tx * tx + ty * ty + tz * tz)
+            tx, ty, tz = tx / tn, ty / tn, tz / tn
+        # weight and buoyancy
+        fz -= p[_WLEN] * ln
+        # mass and added mass
+        am = p[_MLEN] * ln + rho * A * ln * p[_CAN]
+        bm = rho * A * ln * (p[_CAT] - p[_CAN])
+        # drag on the velocity relative to still water
+        vx, vy, vz = v[i, 0], v[i, 1], v[i, 2]
+        vt = vx * tx + vy * ty + vz * tz
+        px, py, pz = vx - vt * tx, vy - vt * ty, vz - vt * tz
+        vp = math.sqrt(px * px + py * py + pz * pz)
+        avt = abs(vt)
+        cn = cdn * ln
+        ct = cdt * ln
+        fx -= cn * vp * px + ct * avt * vt * tx
+        fy -= cn * vp * py + ct * avt * vt * ty
+        fz -= cn * vp * pz + ct * avt * vt * tz
+        tv = (tx, ty, tz)
+        pv = (px, py, pz)
+        inv_vp = 1.0 / vp if vp > 0.0 else 0.0
+        for a in range(3):
+            for b in range(3):
+                tt = tv[a] * tv[b]
+                M[i, a, b] = bm * tt + (am if a == b else 0.0)
+                if jac:
+                    C[i, a, b] = cn * (vp * ((1.0 if a == b else 0.0) - tt) + pv[a] * pv[b] * inv_vp) + 2.0 * ct * avt * tt
+        Kz[i] = 0.0
+        # seabed contact; the implicit matrix sees the seabed spring-damper already within
+        # a band above it, so that a landing node does not bounce (W-method: only the
+        # matrix changes, not the forces)
+        if jac and r[i, 2] < zbed + p[_BAND] + hb * max(-vz, 0.0):
+            area = p[_D] * ln
+            Kz[i] = p[_KB] * area
+            C[i, 2, 2] += p[_CB] * area
+        if r[i, 2] < zbed:
+            area = p[_D] * ln
+            Bz = ((zbed - r[i, 2]) * p[_KB] - vz * p[_CB]) * area
+            fz += Bz
+            if mu > 0.0:
+                fmax = mu * abs(Bz)
+                vh = math.sqrt(vx * vx + vy * vy)
+                if vh > 0.0:
+                    ff = fmax * min(vh / p[_VSLIP], 1.0)
+                    fx -= ff * vx / vh
+                    fy -= ff * vy / vh
+                if jac:
+                    cf = fmax / max(vh, p[_VSLIP])
+                    C[i, 0, 0] += cf
+                    C[i, 1, 1] += cf
+        F[i, 0] = fx
+        F[i, 1] = fy
+        F[i, 2] = fz
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def _end_force(r, v, p, out):
+    """Net force of the fairlead node (N) without its inertia, i.e. the force on the platform."""
+    N = int(p[_N])
+    l0 = p[_L0]
+    dx = r[N, 0] - r[N - 1, 0]
+    dy = r[N, 1] - r[N - 1, 1]
+    dz = r[N, 2] - r[N - 1, 2]
+    l = math.sqrt(dx * dx + dy * dy + dz * dz)
+    qx, qy, qz = dx / l, dy / l, dz / l
+    ldot = qx * (v[N, 0] - v[N - 1, 0]) + qy * (v[N, 1] - v[N - 1, 1]) + qz * (v[N, 2] - v[N - 1, 2])
+    T = p[_EA] / l0 * (l - l0) if l > l0 else 0.0
+    f = T + p[_CINT] * ldot
+    ln = 0.5 * l0
+    vx, vy, vz = v[N, 0], v[N, 1], v[N, 2]
+    vt = vx * qx + vy * qy + vz * qz
+    px, py, pz = vx - vt * qx, vy - vt * qy, vz - vt * qz
+    vp = math.sqrt(px * px + py * py + pz * pz)
+    cn = 0.5 * p[_RHO] * p[_CDN] * p[_D] * ln
+    ct = 0.5 * p[_RHO] * p[_CDT] * math.pi * p[_D] * ln * abs(vt)
+    out[0] = -f * qx - cn * vp * px - ct * vt * qx
+    out[1] = -f * qy - cn * vp * py - ct * vt * qy
+    out[2] = -f * qz - cn * vp * pz - ct * vt * qz - p[_WLEN] * ln
+    if r[N, 2] < p[_ZBED]:
+        out[2] += ((p[_ZBED] - r[N, 2]) * p[_KB] - vz * p[_CB]) * p[_D] * ln
+
+
+# --------------------------------------------------------------------------- ROS2 step
+@njit(cache=True, fastmath=True, error_model="numpy")
+def _kx_times(Ks, Kz, rx, i, N, out):
+    """(K_x rx)_i for interior node i: segment springs to both neighbours + seabed spring."""
+    for a in range(3):
+        acc = 0.0
+        for b in range(3):
+            acc += Ks[i - 1, a, b] * (rx[i - 1, b] - rx[i, b]) + Ks[i, a, b] * (rx[i + 1, b] - rx[i, b])
+        out[a] = acc
+    out[2] -= Kz[i] * rx[i, 2]
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def _solve_blocks(S, Winv, b, x, N, tmp):
+    """Solve the factorised block-tridiagonal system (interior nodes 1..N-1) in place."""
+    # forward: y_i = b_i + S_{i-1} W_{i-1}^{-1} y_{i-1}; x holds y
+    for a in range(3):
+        x[1, a] = b[1, a]
+    for i in range(2, N):
+        for a in range(3):
+            acc = 0.0
+            for c in range(3):
+                acc += Winv[i - 1, a, c] * x[i - 1, c]
+            tmp[a] = acc
+        for a in range(3):
+            acc = b[i, a]
+            for c in range(3):
+                acc += S[i - 1, a, c] * tmp[c]
+            x[i, a] = acc
+    # backward: x_{N-1} = W^{-1} y; x_i = W_i^{-1} (y_i + S_i x_{i+1})
+    for a in range(3):
+        tmp[a] = x[N - 1, a]
+    for a in range(3):
+        acc = 0.0
+        for c in range(3):
+            acc += Winv[N - 1, a, c] * tmp[c]
+        x[N - 1, a] = acc
+    for i in range(N - 2, 0, -1):
+        for a in range(3):
+            acc = x[i, a]
+            for c in range(3):
+                acc += S[i, a, c] * x[i + 1, c]
+            tmp[a] = acc
+        for a in range(3):
+            acc = 0.0
+            for c in range(3):
+                acc += Winv[i, a, c] * tmp[c]
+            x[i, a] = acc
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def _ros2_step(r, v, rf0, vf0, rf1, vf1, h, p, w):
+    """One ROS2 step of one line; r, v (N+1, 3) updated in place, fairlead moved rf0 -> rf1."""
+    (F, M, Ks, Cs, Kz, C, segf, segq, S, Winv, D, rhs, kx1, kv1, kx2, kv2, r2, v2, F2, M2, Ks2, Cs2, Kz2, C2,
+     tmp3, tmpm, Minv) = w
+    N = int(p[_N])
+    g = GAMMA
+    gh = g * h
+    gh2 = gh * gh
+    for a in range(3):
+        r[N, a] = rf0[a]
+        v[N, a] = vf0[a]
+    an = (vf1[0] - vf0[0]) / h, (vf1[1] - vf0[1]) / h, (vf1[2] - vf0[2]) / h
+    _node_forces(r, v, p, h, True, F, M, Ks, Cs, Kz, C, segf, segq)
+    # coupling blocks S_s = gh Cs + gh^2 Ks, diagonal blocks and factorisation
+    for s in range(N):
+        for a in range(3):
+            for b in range(3):
+                S[s, a, b] = gh * Cs[s, a, b] + gh2 * Ks[s, a, b]
+    for i in range(1, N):
+        for a in range(3):
+            for b in range(3):
+                D[a, b] = M[i, a, b] + gh * C[i, a, b] + S[i - 1, a, b] + S[i, a, b]
+        D[2, 2] += gh2 * Kz[i]
+        if i > 1:
+            # D -= S_{i-1} W_{i-1}^{-1} S_{i-1}
+            for a in range(3):
+                for b in range(3):
+                    acc = 0.0
+                    for c in range(3):
+                        acc += S[i - 1, a, c] * Winv[i - 1, c, b]
+                    tmpm[a, b] = acc
+            for a in range(3):
+                for b in range(3):
+                    acc = 0.0
+                    for c in range(3):
+                        acc += tmpm[a, c] * S[i - 1, c, b]
+                    D[a, b] -= acc
+        _inv3(D, Winv[i])
+    # ---- stage 1: x-part of f is v; fairlead k-values (time as a state): v_f, a_f
+    for a in range(3):
+        kx1[0, a] = 0.0
+        kx1[N, a] = vf0[a]
+        rhs[0, a] = 0.0
+    for i in range(1, N):
+        for a in range(3):
+            kx1[i, a] = v[i, a]  # rx1 stored in kx1 for the product
+    for i in range(1, N):
+        _kx_times(Ks, Kz, kx1, i, N, tmp3)
+        for a in range(3):
+            rhs[i, a] = F[i, a] + gh * tmp3[a]
+    for a in range(3):
+        acc = 0.0
+        for b in range(3):
+            acc += Cs[N - 1, a, b] * an[b]
+        rhs[N - 1, a] += gh * acc
+    _solve_blocks(S, Winv, rhs, kv1, N, tmp3)
+    for i in range(1, N):
+        for a in range(3):
+            kx1[i, a] = v[i, a] + gh * kv1[i, a]
+    # ---- stage 2 at t + h, y + h k1
+    for a in range(3):
+        r2[0, a] = r[0, a]
+        v2[0, a] = 0.0
+        r2[N, a] = rf1[a]
+        v2[N, a] = vf1[a]
+    for i in range(1, N):
+        for a in range(3):
+            r2[i, a] = r[i, a] + h * kx1[i, a]
+            v2[i, a] = v[i, a] + h * kv1[i, a]
+    _node_forces(r2, v2, p, h, False, F2, M2, Ks2, Cs2, Kz2, C2, segf, segq)
+    # rx2 = v + h kv1 - 2 kx1 (stored in kx2); fairlead: -v_f, -a_f
+    for a in range(3):
+        kx2[0, a] = 0.0
+        kx2[N, a] = -vf0[a]
+    for i in range(1, N):
+        for a in range(3):
+            kx2[i, a] = v[i, a] + h * kv1[i, a] - 2.0 * kx1[i, a]
+    for i in range(1, N):
+        _inv3(M2[i], Minv)
+        for a in range(3):
+            acc = 0.0
+            for b in range(3):
+                acc += Minv[a, b] * F2[i, b]
+            tmp3[a] = acc - 2.0 * kv1[i, a]  # rv2
+        for a in range(3):
+            acc = 0.0
+            for b in range(3):
+                acc += M[i, a, b] * tmp3[b]
+            rhs[i, a] = acc
+        _kx_times(Ks, Kz, kx2, i, N, tmp3)
+        for a in range(3):
+            rhs[i, a] += gh * tmp3[a]
+    for a in range(3):
+        acc = 0.0
+        for b in range(3):
+            acc += Cs[N - 1, a, b] * an[b]
+        rhs[N - 1, a] -= gh * acc
+    _solve_blocks(S, Winv, rhs, kv2, N, tmp3)
+    # ---- update
+    for i in range(1, N):
+        for a in range(3):
+            kxa = kx2[i, a] + gh * kv2[i, a]
+            r[i, a] += h * (1.5 * kx1[i, a] + 0.5 * kxa)
+            v[i, a] += h * (1.5 * kv1[i, a] + 0.5 * kv2[i, a])
+    for a in range(3):
+        r[N, a] = rf1[a]
+        v[N, a] = vf1[a]
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def _static_solve(r, p, w, iters, tol):
+    """Newton iterations on the static node equilibrium of one line (fairlead and anchor fixed).
+
+    Returns the largest remaining interior force imbalance, N.
+    """
+    (F, M, Ks, Cs, Kz, C, segf, segq, S, Winv, D, rhs, kx1, kv1, kx2, kv2, r2, v2, F2, M2, Ks2, Cs2, Kz2, C2,
+     tmp3, tmpm, Minv) = w
+    N = int(p[_N])
+    for a in range(3):
+        for i in range(N + 1):
+            v2[i, a] = 0.0
+    res = 0.0
+    for _ in range(iters):
+        _node_forces(r, v2, p, 0.0, True, F, M, Ks, Cs, Kz, C, segf, segq)
+        res = 0.0
+        for i in range(1, N):
+            for a in range(3):
+                res = max(res, abs(F[i, a]))
+        if res < tol:
+            break
+        for s in range(N):
+            for a in range(3):
+                for b in range(3):
+                    S[s, a, b] = Ks[s, a, b]
+        for i in range(1, N):
+            for a in range(3):
+                for b in range(3):
+                    D[a, b] = S[i - 1, a, b] + S[i, a, b]
+            D[2, 2] += Kz[i]
+            if i > 1:
+                for a in range(3):
+                    for b in range(3):
+                        acc = 0.0
+                        for c in range(3):
+                            acc += S[i - 1, a, c] * Winv[i - 1, c, b]
+                        tmpm[a, b] = acc
+                for a in range(3):
+                    for b in range(3):
+                        acc = 0.0
+                        for c in range(3):
+                            acc += tmpm[a, c] * S[i - 1, c, b]
+                        D[a, b] -= acc
+            _inv3(D, Winv[i])
+        _solve_blocks(S, Winv, F, kx1, N, tmp3)
+        big = 0.0
+        for i in range(1, N):
+            for a in range(3):
+                big = max(big, abs(kx1[i, a]))
+        scale = min(1.0, 1.0 / big) if big > 0.0 else 1.0
+        for i in range(1, N):
+            for a in range(3):
+                r[i, a] += scale * kx1[i, a]
+    return res
+
+
+@njit(cache=True, inline="always", fastmath=True, error_model="numpy")
+def _hermite(p0, v0, p1, v1, T, s, pos, vel):
+    """Cubic Hermite position and velocity at fraction s of an interval of length T."""
+    s2 = s * s
+    s3 = s2 * s
+    h00 = 2 * s3 - 3 * s2 + 1
+    h10 = s3 - 2 * s2 + s
+    h01 = -2 * s3 + 3 * s2
+    h11 = s3 - s2
+    d00 = (6 * s2 - 6 * s) / T
+    d10 = 3 * s2 - 4 * s + 1
+    d01 = (-6 * s2 + 6 * s) / T
+    d11 = 3 * s2 - 2 * s
+    for a in range(3):
+        pos[a] = h00 * p0[a] + h10 * T * v0[a] + h01 * p1[a] + h11 * T * v1[a]
+        vel[a] = d00 * p0[a] + d10 * v0[a] + d01 * p1[a] + d11 * v1[a]
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def _step_batch(r, v, r_new, v_new, dt, nsub, p, w, fa, fb, va, vb, p0, v0, forces, tension):
+    """Advance every line of every batch member by dt (nsub ROS2 substeps)."""
+    nb, nl = r.shape[0], r.shape[1]
+    N = int(p[_N])
+    h = dt / nsub
+    for b in range(nb):
+        for k in range(nl):
+            rr = r[b, k]
+            vv = v[b, k]
+            for a in range(3):
+                fa[a] = rr[N, a]
+                va[a] = vv[N, a]
+                p0[a] = rr[N, a]
+                v0[a] = vv[N, a]
+            for j in range(nsub):
+                _hermite(p0, v0, r_new[b, k], v_new[b, k], dt, (j + 1) / nsub, fb, vb)
+                _ros2_step(rr, vv, fa, va, fb, vb, h, p, w)
+                for a in range(3):
+                    fa[a] = fb[a]
+                    va[a] = vb[a]
+            _end_force(rr, vv, p, forces[b, k])
+            tension[b, k] = math.sqrt(forces[b, k, 0] ** 2 + forces[b, k, 1] ** 2 + forces[b, k, 2] ** 2)
+
+
+def _workspace(N: int) -> tuple:
+    n1 = N + 1
+    return (
+        np.zeros((n1, 3)),  # F
+        np.zeros((n1, 3, 3)),  # M
+        np.zeros((N, 3, 3)),  # Ks
+        np.zeros((N, 3, 3)),  # Cs
+        np.zeros(n1),  # Kz
+        np.zeros((n1, 3, 3)),  # C
+        np.zeros(N),  # segf
+        np.zeros((N, 3)),  # segq
+        np.zeros((N, 3, 3)),  # S
+        np.zeros((n1, 3, 3)),  # Winv
+        np.zeros((3, 3)),  # D
+        np.zeros((n1, 3)),  # rhs
+        np.zeros((n1, 3)),  # kx1
+        np.zeros((n1, 3)),  # kv1
+        np.zeros((n1, 3)),  # kx2
+        np.zeros((n1, 3)),  # kv2
+        np.zeros((n1, 3)),  # r2
+        np.zeros((n1, 3)),  # v2
+        np.zeros((n1, 3)),  # F2
+        np.zeros((n1, 3, 3)),  # M2
+        np.zeros((N, 3, 3)),  # Ks2
+        np.zeros((N, 3, 3)),  # Cs2
+        np.zeros(n1),  # Kz2
+        np.zeros((n1, 3, 3)),  # C2
+        np.zeros(3),  # tmp3
+        np.zeros((3, 3)),  # tmpm
+        np.zeros((3, 3)),  # Minv
+    )
+
+
+def hermite(p0: np.ndarray, v0: np.ndarray, p1: np.ndarray, v1: np.ndarray, T: float, s: float) -> tuple[np.ndarray, np.ndarray]:
+    """Cubic Hermite interpolation of a 3-D motion, position and velocity at fraction ``s``."""
+    pos = np.empty(3)
+    vel = np.empty(3)
+    _hermite(np.asarray(p0, float), np.asarray(v0, float), np.asarray(p1, float), np.asarray(v1, float), float(T), float(s), pos, vel)
+    return pos, vel
+
+
+def initial_nodes(model: LineModel, anchor: np.ndarray, fairlead: np.ndarray, length: float, props: LineProperties) -> np.ndarray:
+    """Node positions ``(N + 1, 3)`` on the static frictionless catenary between anchor and fairlead."""
+    p = model.params
+    N = int(p[_N])
+    d = np.asarray(fairlead, float) - np.asarray(anchor, float)
+    X = float(np.hypot(d[0], d[1]))
+    Z = float(d[2])
+    H, V = catenary_solve(X, Z, length, props.EA, p[_WLEN])
+    prof = catenary_profile(np.linspace(0.0, length, N + 1), H, V, length, props.EA, p[_WLEN])
+    e = d[:2] / X
+    out = np.empty((N + 1, 3))
+    out[:, 0] = anchor[0] + prof[:, 0] * e[0]
+    out[:, 1] = anchor[1] + prof[:, 0] * e[1]
+    out[:, 2] = anchor[2] + prof[:, 1]
+    out[0] = anchor
+    out[N] = fairlead
+    return out
+
+
+@dataclass(frozen=True)
+class DynamicState:
+    """State of a batch of line sets (arrays updated in place by :meth:`DynamicMooring.step`).
+
+    Attributes
+    ----------
+    r, v : numpy.ndarray, shape (B, L, N + 1, 3)
+        Node positions (m) and velocities (m/s); node 0 anchor, node N fairlead.
+    forces : numpy.ndarray, shape (B, L, 3)
+        Force of each line on the platform at its fairlead, N (global frame).
+    tension : numpy.ndarray, shape (B, L)
+        Its magnitude, N.
+    """
+
+    r: np.ndarray
+    v: np.ndarray
+    forces: np.ndarray
+    tension: np.ndarray
+
+
+class DynamicMooring:
+    """Lumped-mass lines with the simulator interface (see :mod:`moorlife.mooring`)."""
+
+    kind = "dynamic"
+
+    def __init__(self, model: LineModel, props: LineProperties, layout: Layout, settings: MooringSettings, batch: int) -> None:
+        self.model = model
+        self.props = props
+        self.layout = layout
+        self.settings = settings
+        self.batch = int(batch)
+        self._w = _workspace(model.n_segments)
+        self._buf = tuple(np.zeros(3) for _ in range(6))
+
+    def init(self, r_fair: np.ndarray, relax: float | None = None) -> DynamicState:
+        """Static catenary shape at fairlead positions ``r_fair (B, L, 3)``, then relaxed.
+
+        The lines start on the frictionless elastic catenary and are integrated with the
+        fairleads held still for ``relax`` s (default ``settings.relaxation_time``), which
+        settles the discretisation and seabed-spring differences.
+        """
+        r_fair = np.asarray(r_fair, dtype=float)
+        B, L = r_fair.shape[:2]
+        N = self.model.n_segments
+        r = np.empty((B, L, N + 1, 3))
+        for b in range(B):
+            for k in range(L):
+                r[b, k] = initial_nodes(self.model, self.layout.anchors[k], r_fair[b, k], self.layout.length, self.props)
+        tol = 1e-6 * self.props.wet_weight * self.layout.length
+        for b in range(B):
+            for k in range(L):
+                _static_solve(r[b, k], self.model.params, self._w, 200, tol)
+        state = DynamicState(r=r, v=np.zeros_like(r), forces=np.zeros((B, L, 3)), tension=np.zeros((B, L)))
+        relax = self.settings.relaxation_time if relax is None else float(relax)
+        zero = np.zeros((B, L, 3))
+        fixed = np.ascontiguousarray(r_fair)
+        dt_relax = 4.0 * self.settings.max_time_step
+        n = int(math.ceil(relax / dt_relax))
+        for _ in range(n):
+            self.step(state, fixed, zero, dt_relax)
+        if n == 0:
+            self.step(state, fixed, zero, 0.0)
+        state.v[...] = 0.0
+        return state
+
+    def step(self, state: DynamicState, r_fair: np.ndarray, v_fair: np.ndarray, dt: float):
+        """Advance by ``dt`` to fairlead positions/velocities ``(B, L, 3)``; return ``(forces, state)``.
+
+        The fairlead path within the step is the cubic Hermite curve between the previous
+        and the new position and velocity; the step is cut into ``ceil(dt / max_time_step)``
+        ROS2 substeps. ``forces (B, L, 3)`` is a view into the state (overwritten next call).
+        """
+        nsub = max(1, int(math.ceil(dt / self.settings.max_time_step - 1e-9)))
+        if dt <= 0.0:
+            nsub, dt = 1, 1e-6
+        _step_batch(state.r, state.v, np.ascontiguousarray(r_fair, dtype=float), np.ascontiguousarray(v_fair, dtype=float),
+                    float(dt), nsub, self.model.params, self._w, *self._buf, state.forces, state.tension)
+        return state.forces, state
+
+    def tension(self, state: DynamicState) -> np.ndarray:
+        """Fairlead tension magnitude ``(B, L)``, N."""
+        return state.tension
+
+    def forces(self, state: DynamicState) -> np.ndarray:
+        """Force on the platform ``(B, L, 3)``, N."""
+        return state.forces
