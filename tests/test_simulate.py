@@ -236,3 +236,21 @@ def test_heavier_lines_reduce_offsets_and_raise_tensions():
     ten = [out[k]["tension_mean"][0].max() for k in ("MS1", "MS3", "MS6")]
     assert surge[0] > surge[1] > surge[2] > 0
     assert ten[0] < ten[1] < ten[2]
+
+
+def test_steady_wind_offset_equals_catenary_static_balance(ms3):
+    """Issue 7 point 4: steady 11.4 m/s wind, no waves: the mean offset is the static balance of
+    thrust against the (nonlinear, quasi-static) mooring restoring."""
+    grid = env.record_grid(200.0, 800.0, 0.1)
+    f = quiet_forcing(ms3, grid, wind=11.4, wind_dir=270.0)
+    thrust = float(np.interp(11.4, ms3.thrust_speed, ms3.thrust_force))
+    load = np.array([thrust, 0, 0, 0, thrust * ms3.hub[2], 0])
+    q_st, ten_st = sim.static_equilibrium(ms3, load)
+    rec = sim.integrate(ms3, f, transient=800.0, q0=[q_st * 0.9])
+    mean = rec.motion[0].mean(axis=-1)
+    assert q_st[0] > 5.0  # a real offset (m)
+    np.testing.assert_allclose(mean[[0, 4]], q_st[[0, 4]], rtol=0.01)
+    np.testing.assert_allclose(rec.tension[0].mean(axis=-1), ten_st, rtol=0.01)
+    # the windward line (M2, anchored to the west) holds the platform: it tightens, M1/M3 slacken
+    assert ten_st[1] > 1.77e6 > ten_st[0]
+    assert ten_st[0] == pytest.approx(ten_st[2], rel=1e-6)

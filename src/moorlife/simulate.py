@@ -60,7 +60,8 @@ __all__ = [
     "rotation_matrix",
     "frequency_response",
     "linear_natural_periods",
-    "static_offset",
+    "radiation_impedance",
+    "static_equilibrium",
 ]
 
 #: Extra scalar outputs per case (beyond ``names.SIM_SCALAR_VARS``).
@@ -1270,3 +1271,56 @@ def attach_mooring(model: ModelInputs, mooring_row: Mapping[str, Any], mooring_c
         static_load=static,
         line_info={"link_diameter": props.link_diameter, "mbs": props.MBS, "chain": props.chain},
     )
+
+
+def static_equilibrium(model: ModelInputs, load: np.ndarray, *, tol: float = 1e-6, max_iter: int = 50) -> tuple[np.ndarray, np.ndarray]:
+    """Static position of the moored platform under a constant external load.
+
+    Solves ``load + static_load + F_moor(q) - K q = 0`` by Newton iterations with a
+    finite-difference Jacobian, the mooring force from the quasi-static catenary of the model's
+    lines (``"linear"`` models use ``mooring_stiffness``).
+
+    Parameters
+    ----------
+    model : ModelInputs
+    load : (6,)
+        External load about the origin (e.g. steady thrust at the hub), N and N m.
+
+    Returns
+    -------
+    q : (6,)
+        Displacement, m and rad.
+    tension : (3,)
+        Fairlead tensions there, N (NaN for a linear model).
+    """
+    load = np.asarray(load, dtype=float)
+    if model.mooring_kind == "linear":
+        q = np.linalg.solve(model.stiffness + model.mooring_stiffness, load + model.static_load)
+        return q, np.full(3, np.nan)
+    from moorlife import mooring as moor
+
+    props, layout, cfg, _ = model.mooring_args
+    qs = moor.make_mooring("quasistatic", props, layout, cfg, batch=7)
+    fair = np.ascontiguousarray(model.fairleads)
+
+    def residual(qb: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        r = np.empty((qb.shape[0], 3, 3))
+        vz = np.zeros_like(r)
+        _fairlead_motion(qb, np.zeros_like(qb), fair, r, vz)
+        st = qs.init(r)
+        f6 = np.zeros((qb.shape[0], 6))
+        _moor_generalised(qb, np.array(qs.forces(st), dtype=float), fair, f6)
+        return load + model.static_load + f6 - qb @ model.stiffness.T, np.array(qs.tension(st))
+
+    q = np.zeros(6)
+    h = np.array([1e-3, 1e-3, 1e-3, 1e-5, 1e-5, 1e-5])
+    for _ in range(max_iter):
+        qb = np.vstack([q, q + np.diag(h)])
+        res, ten = residual(qb)
+        jac = ((res[1:] - res[0]) / h[:, None]).T
+        dq = np.linalg.lstsq(jac, -res[0], rcond=None)[0]
+        q = q + dq
+        if np.all(np.abs(dq) < tol * np.maximum(1.0, np.abs(q))):
+            break
+    res, ten = residual(np.vstack([q] * 7))
+    return q, ten[0]
