@@ -61,7 +61,7 @@ DEFAULTS: dict[str, Any] = {
     "internal_damping_ratio": 1.0,
     "seabed_stiffness": 3.0e6,
     "seabed_damping": 3.0e5,
-    "friction_coefficient": 0.0,
+    "friction_coefficient": 0.7,
     "friction_slip_velocity": 0.01,
     "max_time_step": 0.05,
     "relaxation_time": 60.0,
