@@ -704,6 +704,8 @@ def validate_hindcast(
     data = df[[v for v in METOCEAN_VARS if v in df.columns]].apply(pd.to_numeric, errors="coerce")
     for v in data.columns:
         raw = df[v]
+        if pd.api.types.is_numeric_dtype(raw.dtype):
+            continue  # nothing to coerce: NaN are gaps, handled below
         nonnum = data[v].isna() & raw.notna() & (raw.astype(str).str.strip() != "")
         if nonnum.any():
             i = int(np.flatnonzero(nonnum.to_numpy())[0])
