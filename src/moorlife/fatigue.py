@@ -60,6 +60,7 @@ __all__ = [
     "spectral_moments",
     "narrowband_damage",
     "dirlik_damage",
+    "dirlik_pdf",
 ]
 
 SECONDS_PER_HOUR = 3600.0
@@ -1232,6 +1233,41 @@ def narrowband_damage(m0: npt.ArrayLike, m2: npt.ArrayLike, duration: float, a: 
     return nu0 * duration * (2.0 * np.sqrt(2.0 * m0)) ** m * math.gamma(1.0 + m / 2.0) / a
 
 
+def _dirlik_coefficients(frequency: npt.ArrayLike, psd: npt.ArrayLike) -> tuple[np.ndarray, ...]:
+    m0, m1, m2, m4 = spectral_moments(frequency, psd, (0, 1, 2, 4))
+    xm = m1 / m0 * np.sqrt(m2 / m4)
+    g = m2 / np.sqrt(m0 * m4)
+    d1 = 2.0 * (xm - g**2) / (1.0 + g**2)
+    r = (g - xm - d1**2) / (1.0 - g - d1 + d1**2)
+    d2 = (1.0 - g - d1 + d1**2) / (1.0 - r)
+    d3 = 1.0 - d1 - d2
+    q = 1.25 * (g - d3 - d2 * r) / d1
+    return m0, np.sqrt(m4 / m2), d1, d2, d3, q, r
+
+
+def dirlik_pdf(ranges: npt.ArrayLike, frequency: npt.ArrayLike, psd: npt.ArrayLike) -> np.ndarray:
+    """Dirlik (1985) probability density of rainflow ranges of a Gaussian process.
+
+    Parameters
+    ----------
+    ranges : array_like, shape (nr,)
+        Ranges ``S`` (unit of the load).
+    frequency : array_like, shape (nf,)
+        Hz.
+    psd : array_like, shape (nf,)
+        One-sided PSD of the load per Hz.
+
+    Returns
+    -------
+    ndarray, shape (nr,)
+        ``p(S)`` in 1/unit; integrates to 1 over ``S >= 0``.
+    """
+    m0, _, d1, d2, d3, q, r = _dirlik_coefficients(frequency, psd)
+    z = np.asarray(ranges, dtype=float) / (2.0 * np.sqrt(m0))
+    dens = d1 / q * np.exp(-z / q) + d2 * z / r**2 * np.exp(-(z**2) / (2.0 * r**2)) + d3 * z * np.exp(-(z**2) / 2.0)
+    return dens / (2.0 * np.sqrt(m0))
+
+
 def dirlik_damage(
     frequency: npt.ArrayLike, psd: npt.ArrayLike, duration: float, a: float, m: float
 ) -> np.ndarray:
@@ -1261,15 +1297,7 @@ def dirlik_damage(
     ``nu_p T / a (2 sqrt m0)**m [D1 Q**m Gamma(1+m) + sqrt(2)**m Gamma(1+m/2) (D2 |R|**m + D3)]``
     with ``nu_p = sqrt(m4/m2)`` the rate of peaks.
     """
-    m0, m1, m2, m4 = spectral_moments(frequency, psd, (0, 1, 2, 4))
-    xm = m1 / m0 * np.sqrt(m2 / m4)
-    g = m2 / np.sqrt(m0 * m4)
-    d1 = 2.0 * (xm - g**2) / (1.0 + g**2)
-    r = (g - xm - d1**2) / (1.0 - g - d1 + d1**2)
-    d2 = (1.0 - g - d1 + d1**2) / (1.0 - r)
-    d3 = 1.0 - d1 - d2
-    q = 1.25 * (g - d3 - d2 * r) / d1
-    nu_p = np.sqrt(m4 / m2)
+    m0, nu_p, d1, d2, d3, q, r = _dirlik_coefficients(frequency, psd)
     moment = d1 * q**m * math.gamma(1.0 + m) + np.sqrt(2.0) ** m * math.gamma(1.0 + m / 2.0) * (
         d2 * np.abs(r) ** m + d3
     )
