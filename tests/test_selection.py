@@ -190,6 +190,7 @@ def test_mda_bad_arguments():
         mda(pts, 3, is_direction=MASK[:4])
 
 
+@pytest.mark.slow  # importing bluemath-tk takes a few seconds
 def test_mda_agrees_with_bluemath_tk_under_one_metric():
     """Peer library: bluemath-tk's MDA on the three scalar variables, min-max normalised."""
     bm = pytest.importorskip("bluemath_tk.datamining.mda")

@@ -347,8 +347,8 @@ def mda(
         for k in range(cols.shape[0]):
             out = acc if k == 0 else tmp
             np.subtract(cols[k], p[k], out=out)
-            np.abs(out, out=out)
-            if mask[k]:
+            if mask[k]:  # fold on the circle; a scalar difference is squared as is
+                np.abs(out, out=out)
                 np.subtract(two, out, out=tmp2)
                 np.minimum(out, tmp2, out=out)
             np.multiply(out, out, out=out)
