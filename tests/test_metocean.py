@@ -318,3 +318,28 @@ def test_hindcast_dataset_requires_waves():
 def test_params_are_frozen():
     with pytest.raises(dataclasses.FrozenInstanceError):
         mo.SyntheticParams().tp_min = 1.0  # type: ignore[misc]
+
+
+# ------------------------------------------------------------------------------- figures
+def test_rose_frequencies_closed_form():
+    from moorlife.plots.metocean import rose_frequencies
+
+    # 16 sectors of 22.5 deg centred on north: 11 deg -> N, 12 deg -> NNE, 355 -> N, 270 -> W
+    f = rose_frequencies([11.0, 12.0, 355.0, 270.0], [1.0, 5.0, 30.0, 9.0], 16, [0.0, 4.0, 8.0])
+    assert f.shape == (16, 3) and f.sum() == pytest.approx(100.0)
+    assert f[0, 0] == 25.0 and f[0, 2] == 25.0 and f[1, 1] == 25.0 and f[12, 2] == 25.0
+
+
+def test_figures_are_built(config):
+    from matplotlib.figure import Figure
+
+    from moorlife.plots.metocean import plot_hs_tp, plot_wave_rose, plot_wind_rose
+
+    ds = mo.build_hindcast(dict(config["hindcast"], start="1985-01-01", end="1985-12-31T23:00"), SEED)
+    for fn in (plot_wind_rose, plot_wave_rose):
+        fig = fn(ds)
+        assert isinstance(fig, Figure) and fig.axes[0].name == "polar"
+    fig = plot_hs_tp(ds)
+    ax = fig.axes[0]
+    assert ax.get_xlabel() == "Tp [s]" and ax.get_ylabel() == "Hs [m]"
+    assert ax.get_ylim()[1] >= float(ds["hs"].max())

@@ -58,6 +58,7 @@ __all__ = [
     "WAVE_VARS",
     "WIND_VARS",
     "DIRECTION_CONVENTION",
+    "G_2PI",
     "hourly_time",
     "smooth_noise",
     "annual_cycle",
@@ -224,7 +225,7 @@ class CleaningPolicy:
         Gaps (missing hours or NaN values) up to this length are linearly interpolated
         (directions on the circle); longer gaps, or any gap when 0, raise.
     duplicates : {"error", "first"}
-        Repeated timestamps: raise, or keep the first occurrence (only if the rows agree or not).
+        Repeated timestamps: raise, or keep the first row of each timestamp.
     unsorted : {"error", "sort"}
         Timestamps out of order: raise, or sort them.
     wrap_directions : bool
@@ -306,9 +307,11 @@ def storm_pulses(
 
     Storm peaks occur as a Poisson process of rate ``rate_per_year * (1 + a * season)``
     (thinning); each has a Weibull peak intensity (mean ``intensity_mean``, shape
-    ``intensity_shape``), gamma-distributed
-    rise and decay times (means ``rise_hours``, ``decay_hours``, shape ``duration_shape``), a
-    smooth asymmetric Gaussian shape, and a direction ``N(direction_mean, direction_spread)``.
+    ``intensity_shape``), gamma-distributed rise and decay times (means ``rise_hours``,
+    ``decay_hours``, shape ``duration_shape``), a smooth asymmetric Gaussian shape, and a
+    direction ``N(direction_mean, direction_spread)``. The summed pulses saturate smoothly at
+    ``intensity_max`` (``I_max * tanh(I / I_max)``): storms have a finite strength, which
+    bounds the 31-year extremes.
 
     Parameters
     ----------
@@ -316,9 +319,6 @@ def storm_pulses(
     season : numpy.ndarray, shape (n,)
         Annual cycle, +1 in mid-winter (:func:`annual_cycle`).
     p : StormParams
-
-    The summed pulses saturate smoothly at ``intensity_max`` (``I_max * tanh(I / I_max)``): storms
-    have a finite strength, which bounds the 31-year extremes.
 
     Returns
     -------
