@@ -166,6 +166,26 @@ def test_netcdf_gridded_valid_time_picks_site(tmp_path):
         load(p)  # no site position given
 
 
+def test_netcdf_era5_expver_merged(tmp_path):
+    t = pd.date_range("2000-01-01", periods=N, freq="h")
+    half = N // 2
+    def two(x):
+        a = np.full((N, 2), np.nan)
+        a[:half, 0], a[half:, 1] = x[:half], x[half:]  # ERA5 then ERA5T
+        return (("time", "expver"), a)
+    k = np.arange(N, dtype=float)
+    ds0 = xr.Dataset(
+        {"swh": two(1.0 + 0.01 * k), "pp1d": two(np.full(N, 9.0)), "mwd": two(np.full(N, 300.0)),
+         "u10": two(np.full(N, 3.0)), "v10": two(np.full(N, 4.0))},
+        coords={"time": t, "expver": [1, 5]},
+    )
+    p = tmp_path / "expver.nc"
+    ds0.to_netcdf(p)
+    ds = load(p)
+    np.testing.assert_allclose(ds["hs"], 1.0 + 0.01 * k)
+    np.testing.assert_allclose(ds["wind_speed"], 5.0 * 9.0**ALPHA)
+
+
 def test_zarr_generic_speed_direction_needs_height(tmp_path):
     t = pd.date_range("2000-01-01", periods=N, freq="h")
     ds0 = xr.Dataset(

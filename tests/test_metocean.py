@@ -307,6 +307,19 @@ def test_build_hindcast_file_source_dispatch(config, tmp_path):
         mo.build_hindcast(dict(h, path=None), SEED)
 
 
+def test_validate_hindcast_on_dataset_and_frame(config):
+    ds = mo.build_hindcast(dict(config["hindcast"], start="1990-01-01", end="1990-01-10T23:00"), SEED)
+    clean = mo.validate_hindcast(ds, source="synthetic")
+    np.testing.assert_array_equal(clean["hs"].to_numpy(), ds["hs"].values)
+    bad = ds.copy(deep=True)
+    bad["tp"][5] = -1.0
+    with pytest.raises(mo.HindcastError, match=r"mem: column 'tp', row 5 \(time 1990-01-01T05:00:00\): value -1 is not > 0"):
+        mo.validate_hindcast(bad, source="mem")
+    frame = ds.to_dataframe().reset_index().drop(columns=["wind_dir"])
+    with pytest.raises(mo.HindcastError, match=r"mem: missing column\(s\) for wind_dir"):
+        mo.validate_hindcast(frame, source="mem")
+
+
 def test_hindcast_dataset_requires_waves():
     with pytest.raises(KeyError, match="tp"):
         mo.hindcast_dataset(

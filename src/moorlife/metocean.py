@@ -635,7 +635,7 @@ def _gap_runs(bad: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def validate_hindcast(
-    df: pd.DataFrame,
+    df: pd.DataFrame | xr.Dataset,
     *,
     source: str,
     policy: CleaningPolicy | None = None,
@@ -648,8 +648,8 @@ def validate_hindcast(
 
     Parameters
     ----------
-    df : pandas.DataFrame
-        Column ``time`` (datetime64) and the contract variables present (``hs``, ``tp``,
+    df : pandas.DataFrame or xarray.Dataset
+        Column (or dimension) ``time`` and the contract variables present (``hs``, ``tp``,
         ``wave_dir``, ``wind_speed``, ``wind_dir``), in the file's order.
     source : str
         The file, quoted in every message.
@@ -679,6 +679,8 @@ def validate_hindcast(
         ``[0, 360)``, implausible values (units), each naming the column, row and value.
     """
     policy = policy or CleaningPolicy()
+    if isinstance(df, xr.Dataset):
+        df = df[[v for v in METOCEAN_VARS if v in df.data_vars]].to_dataframe().reset_index()
     labels = dict(labels or {})
     lab = {v: labels.get(v, v) for v in METOCEAN_VARS}
     if len(df) == 0:

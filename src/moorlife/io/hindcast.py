@@ -137,6 +137,13 @@ def _read_csv(path: Path) -> tuple[pd.DataFrame, np.ndarray, dict[str, Any]]:
 
 def _nearest_point(ds: xr.Dataset, lon: float | None, lat: float | None, path: Path) -> xr.Dataset:
     tname = "time" if "time" in ds.dims else "valid_time"
+    if "expver" in ds.dims:  # CDS downloads mixing final ERA5 (expver 1) and preliminary ERA5T (5)
+        parts = [ds.isel(expver=i, drop=True) for i in range(ds.sizes["expver"])]
+        merged = parts[0]
+        for part in parts[1:]:
+            merged = merged.combine_first(part)
+        log.info("%s: merged the %d 'expver' versions (first non-missing value wins)", path, len(parts))
+        ds = merged
     extra = [d for d in ds.dims if d != tname and ds.sizes[d] > 1]
     if extra:
         lat_name = next((n for n in ("latitude", "lat") if n in ds.coords), None)
