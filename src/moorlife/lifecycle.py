@@ -612,7 +612,7 @@ def reconstruct_lifecycle(
     common = np.intersect1d(cases[dim].values, sims[dim].values)
     cases = cases.sel({dim: common})
     sims = sims.sel({dim: common})
-    role = np.asarray(cases["role"].values).astype(str)
+    role = np.array([str(v) for v in cases["role"].values])
     train, valid = role == "train", role == "validate"
     if train.sum() < 8:
         raise ValueError(f"only {int(train.sum())} training cases are simulated; the RBF needs at least 8")
@@ -648,7 +648,8 @@ def reconstruct_lifecycle(
     out["loo_rmse"] = (o, np.sqrt(np.mean(model.loo_error**2, axis=0)),
                        {"units": "1", "long_name": "Rippa leave-one-out RMSE (transformed space)"})
     out["log_transform"] = (o, model.log_output.astype(np.int8), {"units": "1", "long_name": "1 if interpolated as log10"})
-    out = out.assign_coords(train=("train", common[train]))
+    out = out.assign_coords(train=("train", common[train]), metocean_var=("metocean_var", list(names.METOCEAN_VARS)))
+    out["train_points"] = (("train", "metocean_var"), x[train], {"units": "1", "long_name": "training sea states (physical units)"})
     out["loo_error"] = (("train", o), model.loo_error, {"units": "1", "long_name": "leave-one-out residual per training state"})
     if valid.any():
         pv = rbf.predict_rbf(model, x[valid])
@@ -656,6 +657,7 @@ def reconstruct_lifecycle(
         for k, v in met.items():
             out[f"validation_{k}"] = (o, v, {"units": "1", "long_name": f"validation {k} on {int(valid.sum())} states"})
         out = out.assign_coords(validate=("validate", common[valid]))
+        out["validate_points"] = (("validate", "metocean_var"), x[valid], {"units": "1", "long_name": "validation sea states"})
         out["validation_predicted"] = (("validate", o), pv, {"units": "1", "long_name": "rebuilt value at validation states"})
         out["validation_simulated"] = (("validate", o), y[valid], {"units": "1", "long_name": "simulated value at validation states"})
         if compare_transforms and is_dmg.any():
@@ -757,6 +759,7 @@ def summary_table(
     mooring: pd.DataFrame,
     *,
     seed_cv: Mapping[str, float] | None = None,
+    coverage: float = 1.0,
 ) -> pd.DataFrame:
     """One row per (mooring system, line, curve): the comparison table of the study.
 
@@ -771,6 +774,8 @@ def summary_table(
     seed_cv : mapping of curve -> float, optional
         Relative scatter of the hourly damage across random seeds (seed sensitivity), used with
         the validation sum error for the fatigue-life band.
+    coverage : float
+        Coverage factor of the band (:func:`life_band`).
 
     Returns
     -------
@@ -792,7 +797,7 @@ def summary_table(
             for line in [str(v) for v in lc[names.LINE].values]:
                 sel = {names.CURVE: curve, names.LINE: line}
                 life = float(lc["fatigue_life_years"].sel(sel))
-                low, high = life_band(life, np.hypot(cv, rel_err))
+                low, high = life_band(life, np.hypot(cv, rel_err), coverage)
                 total = float(lc["lifecycle_damage"].sel(sel))
                 disc = float(dd["discrete_damage"].sel(sel)) if dd is not None else np.nan
                 rows.append({
