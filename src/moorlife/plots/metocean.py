@@ -127,11 +127,11 @@ def plot_hs_tp(ds: xr.Dataset, bins: int = 120) -> Figure:
         ax.set_ylim(0.0, hmax)
         ax.grid(alpha=0.3)
     t = np.linspace(0.1, float(np.max(tp)) * 1.03, 200)
-    for s in STEEPNESS_LINES:
+    for s, frac in zip(STEEPNESS_LINES, np.linspace(0.92, 0.75, len(STEEPNESS_LINES))):
         ax1.plot(t, s * G_2PI * t**2, "k--", lw=0.9)
-        t_lab = min(float(np.sqrt(0.92 * hmax / (s * G_2PI))), t[-1])
-        ax1.annotate(f"s = 1/{1 / s:.0f}", (t_lab, s * G_2PI * t_lab**2), fontsize=8, ha="left", va="top",
-                     xytext=(4, 0), textcoords="offset points")
+        t_lab = min(float(np.sqrt(frac * hmax / (s * G_2PI))), t[-1])
+        ax1.annotate(f"s = 1/{1 / s:.0f}", (t_lab, s * G_2PI * t_lab**2), fontsize=8, ha="right", va="center",
+                     xytext=(-4, 0), textcoords="offset points")
     fig.colorbar(mesh, ax=[ax1, ax2], label="hours per bin")
     fig.suptitle(f"Hs-Tp and Hs-W, {_site(ds)} ({hs.size:,} hours)")
     return fig
