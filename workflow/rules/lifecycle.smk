@@ -1,1 +1,54 @@
-# Stage 'lifecycle': rules are added when the stage lands (see the issue tracker).
+# Stage 'lifecycle': rebuild every output of the simulated sea states for every hindcast hour
+# with Gaussian RBF interpolation, validate it on the states kept aside, and sum the hourly
+# damage over the hindcast (paper sections 3.4-3.5, methodology step 6). One job per system.
+
+
+rule lifecycle:
+    input:
+        hindcast="results/metocean/hindcast.zarr",
+        cases="results/selection/cases.zarr",
+        simulations="results/{ms}/simulations.zarr",
+    output:
+        directory("results/{ms}/lifecycle.zarr"),
+    params:
+        lifecycle=config["lifecycle"],
+        fatigue=config["fatigue"],
+    threads: 2
+    resources:
+        mem_mb=2000,
+    conda:
+        "../../envs/moorlife.yaml"
+    log:
+        "logs/{ms}/lifecycle.log",
+    script:
+        "../scripts/lifecycle.py"
+
+
+rule lifecycle_figures:
+    input:
+        "results/{ms}/lifecycle.zarr",
+    output:
+        validation=report(
+            "results/figures/validation_{ms}.png",
+            caption="../report/validation.rst",
+            category="Life cycle",
+            subcategory="{ms}",
+        ),
+        loo_map=report(
+            "results/figures/loo_error_{ms}.png",
+            caption="../report/loo_error.rst",
+            category="Life cycle",
+            subcategory="{ms}",
+        ),
+        damage_metocean=report(
+            "results/figures/damage_metocean_{ms}.png",
+            caption="../report/damage_metocean.rst",
+            category="Life cycle",
+            subcategory="{ms}",
+        ),
+    conda:
+        "../../envs/moorlife.yaml"
+    log:
+        "logs/{ms}/lifecycle_figures.log",
+    script:
+        "../scripts/lifecycle_figures.py"

@@ -48,9 +48,19 @@ def lifecycle_store(
     *,
     lifecycle_cfg: Mapping[str, Any],
     fatigue_cfg: Mapping[str, Any],
+    threads: int | None = None,
 ) -> xr.Dataset:
-    """``results/{ms}/lifecycle.zarr`` from the hindcast, the cases and the simulations."""
+    """``results/{ms}/lifecycle.zarr`` from the hindcast, the cases and the simulations.
+
+    ``threads`` caps the numba threads of the RBF prediction (the rule's ``threads``); the
+    numbers do not depend on it.
+    """
+    import numba
+
     from moorlife import lifecycle
+
+    if threads:
+        numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
 
     settings = lifecycle.rbf_settings(lifecycle_cfg.get("rbf"), source="config.yaml")
     hc = open_zarr(hindcast)
