@@ -52,6 +52,35 @@ def test_wind_from_uv_nautical_coming_from():
     assert direction[4] == pytest.approx(216.8699, abs=1e-4)
 
 
+def test_wind_from_uv_roundtrip():
+    rng = np.random.default_rng(5)
+    speed, direction = rng.uniform(0.1, 40, 1000), rng.uniform(0, 360, 1000)
+    u, v = -speed * np.sin(np.radians(direction)), -speed * np.cos(np.radians(direction))
+    s2, d2 = mo.wind_from_uv(u, v)
+    np.testing.assert_allclose(s2, speed, rtol=1e-12)
+    np.testing.assert_allclose(d2, direction, atol=1e-9)
+
+
+def test_regime_series_frequencies_follow_seasonal_probabilities():
+    p = mo.WindParams(veer_hours=0.0)
+    t = pd.date_range("1985-01-01", "2014-12-31T23:00", freq="h").values
+    season = mo.annual_cycle(t, 15.0)
+    direction, spread, factor = mo.regime_series(np.random.default_rng(2), season, p)
+    label = np.argmin(np.abs(direction[:, None] - np.asarray(p.regime_directions)[None, :]), axis=1)
+    probs, amps = np.asarray(p.regime_probabilities), np.asarray(p.regime_seasonal_amplitudes)
+    for sel, c in ((season > 0.9, 1.0), (season < -0.9, -1.0)):
+        expected = probs * (1 + amps * c)
+        expected /= expected.sum()
+        observed = np.bincount(label[sel], minlength=3) / sel.sum()
+        np.testing.assert_allclose(observed, expected, atol=0.05)
+    # persistence: mean run length of a regime is about regime_hours (consecutive equal draws merge)
+    changes = np.count_nonzero(np.diff(label))
+    q = np.sum(probs**2)  # chance a new segment repeats the regime
+    assert label.size / changes == pytest.approx(p.regime_hours / (1 - q), rel=0.1)
+    np.testing.assert_array_equal(spread, np.asarray(p.regime_spreads)[label])
+    np.testing.assert_array_equal(factor, np.asarray(p.regime_speed_factors)[label])
+
+
 def test_smooth_noise_variance_and_lag1():
     rng = np.random.default_rng(1)
     tau = 20.0
