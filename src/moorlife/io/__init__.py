@@ -11,6 +11,7 @@ from __future__ import annotations
 import os
 import shutil
 import uuid
+import warnings
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -135,7 +136,10 @@ def open_zarr(path: str | os.PathLike[str], *, load: bool = True) -> xr.Dataset:
     if not p.exists():
         raise FileNotFoundError(f"{p}: no such Zarr store")
     try:
-        ds = xr.open_zarr(p, **ZARR_KW)
+        with warnings.catch_warnings():
+            # Snakemake drops a `.snakemake_timestamp` file into directory() outputs
+            warnings.filterwarnings("ignore", message=r"Object at \.snakemake_timestamp", category=UserWarning)
+            ds = xr.open_zarr(p, **ZARR_KW)
     except Exception as exc:  # corrupted metadata, missing arrays, ...
         raise IncompleteStoreError(f"{p}: not a readable Zarr store ({exc}); delete it and rerun") from exc
     if not ds.attrs.get(COMPLETE_ATTR, False):
