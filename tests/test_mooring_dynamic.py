@@ -119,7 +119,6 @@ def test_node_forces_closed_forms():
     props = lines.line_properties(MS2)
     settings = lines.mooring_settings(None)
     model = dyn.line_model(props, LAYOUT, settings)
-    p = model.params
     N = model.n_segments
     l0 = LAYOUT.length / N
     # a straight horizontal line stretched by 0.1 %, lying 0.01 m into the seabed, nodes moving
@@ -128,9 +127,7 @@ def test_node_forces_closed_forms():
     r[:, 2] = -LAYOUT.depth - 0.01
     v = np.zeros_like(r)
     v[:, 1] = 0.5  # sideways (normal) motion, sliding on the seabed
-    w = dyn._workspace(N)
-    F = w[0]
-    dyn._node_forces(r, v, p, 0.0, True, *w[:8])
+    F, M = dyn.node_forces(model, r, v)
     T = props.EA * 0.001
     D = props.equivalent_diameter
     i = N // 2
@@ -143,11 +140,11 @@ def test_node_forces_closed_forms():
     assert F[0, 0] == pytest.approx(T, rel=1e-9)  # end nodes feel the segment tension
     # below the slip velocity the friction is proportional to the speed
     v[:, 1] = 0.002
-    dyn._node_forces(r, v, p, 0.0, True, *w[:8])
+    F, M = dyn.node_forces(model, r, v)
     drag = 0.5 * 1025.0 * 2.0 * D * l0 * 0.002 * 0.002
     assert F[i, 1] == pytest.approx(-drag - 0.7 * abs(Bz) * 0.2, rel=1e-9)
     # added mass: transverse Ca, axial CaAx on the equivalent-diameter volume
-    M = w[1][i]
+    M = M[i]
     V = math.pi / 4 * D**2 * l0
     assert M[0, 0] == pytest.approx(props.mass * l0 + 1025.0 * V * 0.25, rel=1e-12)
     assert M[1, 1] == pytest.approx(props.mass * l0 + 1025.0 * V * 0.8, rel=1e-12)

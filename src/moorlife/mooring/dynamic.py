@@ -45,6 +45,7 @@ from moorlife.mooring.lines import Layout, LineProperties, MooringSettings
 from moorlife.mooring.quasistatic import catenary_profile, catenary_solve
 
 __all__ = [
+    "node_forces",
     "LineModel",
     "DynamicState",
     "DynamicMooring",
@@ -133,13 +134,19 @@ def _inv3(A, out):
 
 # --------------------------------------------------------------------------- forces
 @njit(cache=True, fastmath=True, error_model="numpy")
-def _node_forces(r, v, p, hb, jac, F, M, Ks, Cs, Kz, C, segf, segq):
-    """Net node forces F (N+1, 3) and, for the implicit matrix, M, Ks, Cs, Kz, C."""
+def _node_forces(r, v, p, hb, jac, ws):
+    """Net node forces and, if ``jac``, the pieces of the implicit matrix.
+
+    ``ws = (F, segf, sq, sa, sg, tang, am, bm, C, Kz)``: net node force (N+1, 3); per segment
+    the axial force, unit vector, axial-minus-geometric and geometric stiffness (N/m); per
+    node the unit tangent, the mass matrix ``am I + bm t t'`` and, for the matrix, the local
+    damping matrix C = -dF/dv (drag, seabed, friction) and seabed stiffness Kz.
+    """
+    F, segf, sq, sa, sg, tang, am, bm, C, Kz = ws
     N = int(p[_N])
     l0 = p[_L0]
-    EA = p[_EA]
     cint = p[_CINT]
-    kax = EA / l0
+    kax = p[_EA] / l0
     for s in range(N):
         dx = r[s + 1, 0] - r[s, 0]
         dy = r[s + 1, 1] - r[s, 1]
@@ -149,24 +156,16 @@ def _node_forces(r, v, p, hb, jac, F, M, Ks, Cs, Kz, C, segf, segq):
         ldot = qx * (v[s + 1, 0] - v[s, 0]) + qy * (v[s + 1, 1] - v[s, 1]) + qz * (v[s + 1, 2] - v[s, 2])
         if l > l0:
             T = kax * (l - l0)
-            kg = T / l
-            ka = kax
+            sg[s] = T / l
+            sa[s] = kax - T / l
         else:
             T = 0.0
-            kg = 0.0
-            ka = 0.0
+            sg[s] = 0.0
+            sa[s] = 0.0
         segf[s] = T + cint * ldot
-        segq[s, 0] = qx
-        segq[s, 1] = qy
-        segq[s, 2] = qz
-        if not jac:
-            continue
-        for a in range(3):
-            qa = segq[s, a]
-            for b in range(3):
-                qq = qa * segq[s, b]
-                Ks[s, a, b] = (ka - kg) * qq + (kg if a == b else 0.0)
-                Cs[s, a, b] = cint * qq
+        sq[s, 0] = qx
+        sq[s, 1] = qy
+        sq[s, 2] = qz
     A = 0.25 * math.pi * p[_D] * p[_D]
     rho = p[_RHO]
     cdn = 0.5 * rho * p[_CDN] * p[_D]
@@ -177,30 +176,29 @@ def _node_forces(r, v, p, hb, jac, F, M, Ks, Cs, Kz, C, segf, segq):
         ln = l0 if (0 < i < N) else 0.5 * l0
         fx = fy = fz = 0.0
         if i < N:
-            fx += segf[i] * segq[i, 0]
-            fy += segf[i] * segq[i, 1]
-            fz += segf[i] * segq[i, 2]
+            fx += segf[i] * sq[i, 0]
+            fy += segf[i] * sq[i, 1]
+            fz += segf[i] * sq[i, 2]
         if i > 0:
-            fx -= segf[i - 1] * segq[i - 1, 0]
-            fy -= segf[i - 1] * segq[i - 1, 1]
-            fz -= segf[i - 1] * segq[i - 1, 2]
-        # node tangent
+            fx -= segf[i - 1] * sq[i - 1, 0]
+            fy -= segf[i - 1] * sq[i - 1, 1]
+            fz -= segf[i - 1] * sq[i - 1, 2]
         if i == 0:
-            tx, ty, tz = segq[0, 0], segq[0, 1], segq[0, 2]
+            tx, ty, tz = sq[0, 0], sq[0, 1], sq[0, 2]
         elif i == N:
-            tx, ty, tz = segq[N - 1, 0], segq[N - 1, 1], segq[N - 1, 2]
+            tx, ty, tz = sq[N - 1, 0], sq[N - 1, 1], sq[N - 1, 2]
         else:
             tx = r[i + 1, 0] - r[i - 1, 0]
             ty = r[i + 1, 1] - r[i - 1, 1]
             tz = r[i + 1, 2] - r[i - 1, 2]
-            tn = math.sqrt(tx * tx + ty * ty + tz * tz)
-            tx, ty, tz = tx / tn, ty / tn, tz / tn
-        # weight and buoyancy
+            tn = 1.0 / math.sqrt(tx * tx + ty * ty + tz * tz)
+            tx, ty, tz = tx * tn, ty * tn, tz * tn
+        tang[i, 0] = tx
+        tang[i, 1] = ty
+        tang[i, 2] = tz
         fz -= p[_WLEN] * ln
-        # mass and added mass
-        am = p[_MLEN] * ln + rho * A * ln * p[_CAN]
-        bm = rho * A * ln * (p[_CAT] - p[_CAN])
-        # drag on the velocity relative to still water
+        am[i] = p[_MLEN] * ln + rho * A * ln * p[_CAN]
+        bm[i] = rho * A * ln * (p[_CAT] - p[_CAN])
         vx, vy, vz = v[i, 0], v[i, 1], v[i, 2]
         vt = vx * tx + vy * ty + vz * tz
         px, py, pz = vx - vt * tx, vy - vt * ty, vz - vt * tz
@@ -211,23 +209,31 @@ def _node_forces(r, v, p, hb, jac, F, M, Ks, Cs, Kz, C, segf, segq):
         fx -= cn * vp * px + ct * avt * vt * tx
         fy -= cn * vp * py + ct * avt * vt * ty
         fz -= cn * vp * pz + ct * avt * vt * tz
-        tv = (tx, ty, tz)
-        pv = (px, py, pz)
-        inv_vp = 1.0 / vp if vp > 0.0 else 0.0
-        for a in range(3):
-            for b in range(3):
-                tt = tv[a] * tv[b]
-                M[i, a, b] = bm * tt + (am if a == b else 0.0)
-                if jac:
-                    C[i, a, b] = cn * (vp * ((1.0 if a == b else 0.0) - tt) + pv[a] * pv[b] * inv_vp) + 2.0 * ct * avt * tt
-        Kz[i] = 0.0
-        # seabed contact; the implicit matrix sees the seabed spring-damper already within
-        # a band above it, so that a landing node does not bounce (W-method: only the
-        # matrix changes, not the forces)
-        if jac and r[i, 2] < zbed + p[_BAND] + hb * max(-vz, 0.0):
-            area = p[_D] * ln
-            Kz[i] = p[_KB] * area
-            C[i, 2, 2] += p[_CB] * area
+        if jac:
+            # C = cn (|vp| (I - tt') + vp vp' / |vp|) + 2 ct |vt| tt'
+            ip = cn / vp if vp > 0.0 else 0.0
+            ctt = 2.0 * ct * avt - cn * vp
+            cI = cn * vp
+            C[i, 0, 0] = cI + ctt * tx * tx + ip * px * px
+            C[i, 1, 1] = cI + ctt * ty * ty + ip * py * py
+            C[i, 2, 2] = cI + ctt * tz * tz + ip * pz * pz
+            c01 = ctt * tx * ty + ip * px * py
+            c02 = ctt * tx * tz + ip * px * pz
+            c12 = ctt * ty * tz + ip * py * pz
+            C[i, 0, 1] = c01
+            C[i, 1, 0] = c01
+            C[i, 0, 2] = c02
+            C[i, 2, 0] = c02
+            C[i, 1, 2] = c12
+            C[i, 2, 1] = c12
+            Kz[i] = 0.0
+            # the matrix sees the seabed spring-damper already within a band above it (and
+            # the distance a descending node covers in a step), so that a landing node does
+            # not bounce (W-method: only the matrix changes, not the forces)
+            if r[i, 2] < zbed + p[_BAND] + hb * max(-vz, 0.0):
+                area = p[_D] * ln
+                Kz[i] = p[_KB] * area
+                C[i, 2, 2] += p[_CB] * area
         if r[i, 2] < zbed:
             area = p[_D] * ln
             Bz = ((zbed - r[i, 2]) * p[_KB] - vz * p[_CB]) * area
@@ -276,111 +282,102 @@ def _end_force(r, v, p, out):
 
 
 # --------------------------------------------------------------------------- ROS2 step
-@njit(cache=True, fastmath=True, error_model="numpy")
-def _kx_times(Ks, Kz, rx, i, N, out):
+@njit(cache=True, inline="always", fastmath=True, error_model="numpy")
+def _kx_times(sq, sa, sg, Kz, rx, i, out):
     """(K_x rx)_i for interior node i: segment springs to both neighbours + seabed spring."""
-    for a in range(3):
-        acc = 0.0
-        for b in range(3):
-            acc += Ks[i - 1, a, b] * (rx[i - 1, b] - rx[i, b]) + Ks[i, a, b] * (rx[i + 1, b] - rx[i, b])
-        out[a] = acc
-    out[2] -= Kz[i] * rx[i, 2]
+    ax = rx[i - 1, 0] - rx[i, 0]
+    ay = rx[i - 1, 1] - rx[i, 1]
+    az = rx[i - 1, 2] - rx[i, 2]
+    bx = rx[i + 1, 0] - rx[i, 0]
+    by = rx[i + 1, 1] - rx[i, 1]
+    bz = rx[i + 1, 2] - rx[i, 2]
+    qa = sa[i - 1] * (sq[i - 1, 0] * ax + sq[i - 1, 1] * ay + sq[i - 1, 2] * az)
+    qb = sa[i] * (sq[i, 0] * bx + sq[i, 1] * by + sq[i, 2] * bz)
+    out[0] = qa * sq[i - 1, 0] + sg[i - 1] * ax + qb * sq[i, 0] + sg[i] * bx
+    out[1] = qa * sq[i - 1, 1] + sg[i - 1] * ay + qb * sq[i, 1] + sg[i] * by
+    out[2] = qa * sq[i - 1, 2] + sg[i - 1] * az + qb * sq[i, 2] + sg[i] * bz - Kz[i] * rx[i, 2]
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
 def _solve_blocks(S, Winv, b, x, N, tmp):
-    """Solve the factorised block-tridiagonal system (interior nodes 1..N-1) in place."""
-    # forward: y_i = b_i + S_{i-1} W_{i-1}^{-1} y_{i-1}; x holds y
+    """Solve the factorised block-tridiagonal system (interior nodes 1..N-1)."""
     for a in range(3):
         x[1, a] = b[1, a]
     for i in range(2, N):
         for a in range(3):
-            acc = 0.0
-            for c in range(3):
-                acc += Winv[i - 1, a, c] * x[i - 1, c]
-            tmp[a] = acc
+            tmp[a] = Winv[i - 1, a, 0] * x[i - 1, 0] + Winv[i - 1, a, 1] * x[i - 1, 1] + Winv[i - 1, a, 2] * x[i - 1, 2]
         for a in range(3):
-            acc = b[i, a]
-            for c in range(3):
-                acc += S[i - 1, a, c] * tmp[c]
-            x[i, a] = acc
-    # backward: x_{N-1} = W^{-1} y; x_i = W_i^{-1} (y_i + S_i x_{i+1})
+            x[i, a] = b[i, a] + S[i - 1, a, 0] * tmp[0] + S[i - 1, a, 1] * tmp[1] + S[i - 1, a, 2] * tmp[2]
     for a in range(3):
         tmp[a] = x[N - 1, a]
     for a in range(3):
-        acc = 0.0
-        for c in range(3):
-            acc += Winv[N - 1, a, c] * tmp[c]
-        x[N - 1, a] = acc
+        x[N - 1, a] = Winv[N - 1, a, 0] * tmp[0] + Winv[N - 1, a, 1] * tmp[1] + Winv[N - 1, a, 2] * tmp[2]
     for i in range(N - 2, 0, -1):
         for a in range(3):
-            acc = x[i, a]
-            for c in range(3):
-                acc += S[i, a, c] * x[i + 1, c]
-            tmp[a] = acc
+            tmp[a] = x[i, a] + S[i, a, 0] * x[i + 1, 0] + S[i, a, 1] * x[i + 1, 1] + S[i, a, 2] * x[i + 1, 2]
         for a in range(3):
-            acc = 0.0
-            for c in range(3):
-                acc += Winv[i, a, c] * tmp[c]
-            x[i, a] = acc
+            x[i, a] = Winv[i, a, 0] * tmp[0] + Winv[i, a, 1] * tmp[1] + Winv[i, a, 2] * tmp[2]
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def _factor(ws, S, Winv, D, tmpm, N, cs, cg, cz):
+    """Blocks S_s = cs*cint... (see _ros2_step) and the block-Thomas inverses W_i^-1."""
+    F, segf, sq, sa, sg, tang, am, bm, C, Kz = ws
+    for s in range(N):
+        al = cs + cg * sa[s]
+        be = cg * sg[s]
+        for a in range(3):
+            for b in range(3):
+                S[s, a, b] = al * sq[s, a] * sq[s, b]
+            S[s, a, a] += be
+    for i in range(1, N):
+        for a in range(3):
+            for b in range(3):
+                D[a, b] = bm[i] * tang[i, a] * tang[i, b] + cz * C[i, a, b] + S[i - 1, a, b] + S[i, a, b]
+            D[a, a] += am[i]
+        D[2, 2] += cg * Kz[i]
+        if i > 1:
+            for a in range(3):
+                for b in range(3):
+                    tmpm[a, b] = S[i - 1, a, 0] * Winv[i - 1, 0, b] + S[i - 1, a, 1] * Winv[i - 1, 1, b] + S[i - 1, a, 2] * Winv[i - 1, 2, b]
+            for a in range(3):
+                for b in range(3):
+                    D[a, b] -= tmpm[a, 0] * S[i - 1, 0, b] + tmpm[a, 1] * S[i - 1, 1, b] + tmpm[a, 2] * S[i - 1, 2, b]
+        _inv3(D, Winv[i])
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
 def _ros2_step(r, v, rf0, vf0, rf1, vf1, h, p, w):
     """One ROS2 step of one line; r, v (N+1, 3) updated in place, fairlead moved rf0 -> rf1."""
-    (F, M, Ks, Cs, Kz, C, segf, segq, S, Winv, D, rhs, kx1, kv1, kx2, kv2, r2, v2, F2, M2, Ks2, Cs2, Kz2, C2,
-     tmp3, tmpm, Minv) = w
+    ws1, ws2, S, Winv, D, tmpm, rhs, kx1, kv1, kx2, kv2, r2, v2, tmp3 = w
+    F, segf, sq, sa, sg, tang, am, bm, C, Kz = ws1
+    F2 = ws2[0]
+    tang2, am2, bm2 = ws2[5], ws2[6], ws2[7]
     N = int(p[_N])
-    g = GAMMA
-    gh = g * h
+    cint = p[_CINT]
+    gh = GAMMA * h
     gh2 = gh * gh
     for a in range(3):
         r[N, a] = rf0[a]
         v[N, a] = vf0[a]
-    an = (vf1[0] - vf0[0]) / h, (vf1[1] - vf0[1]) / h, (vf1[2] - vf0[2]) / h
-    _node_forces(r, v, p, h, True, F, M, Ks, Cs, Kz, C, segf, segq)
-    # coupling blocks S_s = gh Cs + gh^2 Ks, diagonal blocks and factorisation
-    for s in range(N):
-        for a in range(3):
-            for b in range(3):
-                S[s, a, b] = gh * Cs[s, a, b] + gh2 * Ks[s, a, b]
-    for i in range(1, N):
-        for a in range(3):
-            for b in range(3):
-                D[a, b] = M[i, a, b] + gh * C[i, a, b] + S[i - 1, a, b] + S[i, a, b]
-        D[2, 2] += gh2 * Kz[i]
-        if i > 1:
-            # D -= S_{i-1} W_{i-1}^{-1} S_{i-1}
-            for a in range(3):
-                for b in range(3):
-                    acc = 0.0
-                    for c in range(3):
-                        acc += S[i - 1, a, c] * Winv[i - 1, c, b]
-                    tmpm[a, b] = acc
-            for a in range(3):
-                for b in range(3):
-                    acc = 0.0
-                    for c in range(3):
-                        acc += tmpm[a, c] * S[i - 1, c, b]
-                    D[a, b] -= acc
-        _inv3(D, Winv[i])
+    anx, any_, anz = (vf1[0] - vf0[0]) / h, (vf1[1] - vf0[1]) / h, (vf1[2] - vf0[2]) / h
+    _node_forces(r, v, p, h, True, ws1)
+    _factor(ws1, S, Winv, D, tmpm, N, gh * cint, gh2, gh)
+    # internal damping coupling of the last interior node to the fairlead acceleration
+    qa = cint * (sq[N - 1, 0] * anx + sq[N - 1, 1] * any_ + sq[N - 1, 2] * anz)
     # ---- stage 1: x-part of f is v; fairlead k-values (time as a state): v_f, a_f
     for a in range(3):
         kx1[0, a] = 0.0
         kx1[N, a] = vf0[a]
-        rhs[0, a] = 0.0
     for i in range(1, N):
         for a in range(3):
-            kx1[i, a] = v[i, a]  # rx1 stored in kx1 for the product
+            kx1[i, a] = v[i, a]
     for i in range(1, N):
-        _kx_times(Ks, Kz, kx1, i, N, tmp3)
+        _kx_times(sq, sa, sg, Kz, kx1, i, tmp3)
         for a in range(3):
             rhs[i, a] = F[i, a] + gh * tmp3[a]
     for a in range(3):
-        acc = 0.0
-        for b in range(3):
-            acc += Cs[N - 1, a, b] * an[b]
-        rhs[N - 1, a] += gh * acc
+        rhs[N - 1, a] += gh * qa * sq[N - 1, a]
     _solve_blocks(S, Winv, rhs, kv1, N, tmp3)
     for i in range(1, N):
         for a in range(3):
@@ -395,7 +392,7 @@ def _ros2_step(r, v, rf0, vf0, rf1, vf1, h, p, w):
         for a in range(3):
             r2[i, a] = r[i, a] + h * kx1[i, a]
             v2[i, a] = v[i, a] + h * kv1[i, a]
-    _node_forces(r2, v2, p, h, False, F2, M2, Ks2, Cs2, Kz2, C2, segf, segq)
+    _node_forces(r2, v2, p, h, False, ws2)
     # rx2 = v + h kv1 - 2 kx1 (stored in kx2); fairlead: -v_f, -a_f
     for a in range(3):
         kx2[0, a] = 0.0
@@ -404,25 +401,19 @@ def _ros2_step(r, v, rf0, vf0, rf1, vf1, h, p, w):
         for a in range(3):
             kx2[i, a] = v[i, a] + h * kv1[i, a] - 2.0 * kx1[i, a]
     for i in range(1, N):
-        _inv3(M2[i], Minv)
-        for a in range(3):
-            acc = 0.0
-            for b in range(3):
-                acc += Minv[a, b] * F2[i, b]
-            tmp3[a] = acc - 2.0 * kv1[i, a]  # rv2
-        for a in range(3):
-            acc = 0.0
-            for b in range(3):
-                acc += M[i, a, b] * tmp3[b]
-            rhs[i, a] = acc
-        _kx_times(Ks, Kz, kx2, i, N, tmp3)
-        for a in range(3):
-            rhs[i, a] += gh * tmp3[a]
+        # rv2 = M2^-1 F2 - 2 kv1, with M = am I + bm t t' inverted in closed form
+        tf = tang2[i, 0] * F2[i, 0] + tang2[i, 1] * F2[i, 1] + tang2[i, 2] * F2[i, 2]
+        c2 = bm2[i] / (am2[i] + bm2[i]) * tf
+        y0 = (F2[i, 0] - c2 * tang2[i, 0]) / am2[i] - 2.0 * kv1[i, 0]
+        y1 = (F2[i, 1] - c2 * tang2[i, 1]) / am2[i] - 2.0 * kv1[i, 1]
+        y2 = (F2[i, 2] - c2 * tang2[i, 2]) / am2[i] - 2.0 * kv1[i, 2]
+        ty = bm[i] * (tang[i, 0] * y0 + tang[i, 1] * y1 + tang[i, 2] * y2)
+        _kx_times(sq, sa, sg, Kz, kx2, i, tmp3)
+        rhs[i, 0] = am[i] * y0 + ty * tang[i, 0] + gh * tmp3[0]
+        rhs[i, 1] = am[i] * y1 + ty * tang[i, 1] + gh * tmp3[1]
+        rhs[i, 2] = am[i] * y2 + ty * tang[i, 2] + gh * tmp3[2]
     for a in range(3):
-        acc = 0.0
-        for b in range(3):
-            acc += Cs[N - 1, a, b] * an[b]
-        rhs[N - 1, a] -= gh * acc
+        rhs[N - 1, a] -= gh * qa * sq[N - 1, a]
     _solve_blocks(S, Winv, rhs, kv2, N, tmp3)
     # ---- update
     for i in range(1, N):
@@ -441,44 +432,27 @@ def _static_solve(r, p, w, iters, tol):
 
     Returns the largest remaining interior force imbalance, N.
     """
-    (F, M, Ks, Cs, Kz, C, segf, segq, S, Winv, D, rhs, kx1, kv1, kx2, kv2, r2, v2, F2, M2, Ks2, Cs2, Kz2, C2,
-     tmp3, tmpm, Minv) = w
+    ws1, ws2, S, Winv, D, tmpm, rhs, kx1, kv1, kx2, kv2, r2, v2, tmp3 = w
+    F = ws1[0]
     N = int(p[_N])
-    for a in range(3):
-        for i in range(N + 1):
+    for i in range(N + 1):
+        for a in range(3):
             v2[i, a] = 0.0
     res = 0.0
     for _ in range(iters):
-        _node_forces(r, v2, p, 0.0, True, F, M, Ks, Cs, Kz, C, segf, segq)
+        _node_forces(r, v2, p, 0.0, True, ws1)
         res = 0.0
         for i in range(1, N):
             for a in range(3):
                 res = max(res, abs(F[i, a]))
         if res < tol:
             break
-        for s in range(N):
-            for a in range(3):
-                for b in range(3):
-                    S[s, a, b] = Ks[s, a, b]
-        for i in range(1, N):
-            for a in range(3):
-                for b in range(3):
-                    D[a, b] = S[i - 1, a, b] + S[i, a, b]
-            D[2, 2] += Kz[i]
-            if i > 1:
-                for a in range(3):
-                    for b in range(3):
-                        acc = 0.0
-                        for c in range(3):
-                            acc += S[i - 1, a, c] * Winv[i - 1, c, b]
-                        tmpm[a, b] = acc
-                for a in range(3):
-                    for b in range(3):
-                        acc = 0.0
-                        for c in range(3):
-                            acc += tmpm[a, c] * S[i - 1, c, b]
-                        D[a, b] -= acc
-            _inv3(D, Winv[i])
+        # Newton matrix: segment and seabed stiffness only (no mass, no damping)
+        am, bm = ws1[6], ws1[7]
+        for i in range(N + 1):
+            am[i] = 0.0
+            bm[i] = 0.0
+        _factor(ws1, S, Winv, D, tmpm, N, 0.0, 1.0, 0.0)
         _solve_blocks(S, Winv, F, kx1, N, tmp3)
         big = 0.0
         for i in range(1, N):
@@ -534,20 +508,22 @@ def _step_batch(r, v, r_new, v_new, dt, nsub, p, w, fa, fb, va, vb, p0, v0, forc
             tension[b, k] = math.sqrt(forces[b, k, 0] ** 2 + forces[b, k, 1] ** 2 + forces[b, k, 2] ** 2)
 
 
+def _stage_workspace(N: int) -> tuple:
+    n1 = N + 1
+    return (np.zeros((n1, 3)), np.zeros(N), np.zeros((N, 3)), np.zeros(N), np.zeros(N), np.zeros((n1, 3)),
+            np.zeros(n1), np.zeros(n1), np.zeros((n1, 3, 3)), np.zeros(n1))
+
+
 def _workspace(N: int) -> tuple:
+    """Work arrays of one line step, allocated once per model."""
     n1 = N + 1
     return (
-        np.zeros((n1, 3)),  # F
-        np.zeros((n1, 3, 3)),  # M
-        np.zeros((N, 3, 3)),  # Ks
-        np.zeros((N, 3, 3)),  # Cs
-        np.zeros(n1),  # Kz
-        np.zeros((n1, 3, 3)),  # C
-        np.zeros(N),  # segf
-        np.zeros((N, 3)),  # segq
-        np.zeros((N, 3, 3)),  # S
+        _stage_workspace(N),  # stage 1: forces and matrix pieces
+        _stage_workspace(N),  # stage 2
+        np.zeros((N, 3, 3)),  # S (coupling blocks)
         np.zeros((n1, 3, 3)),  # Winv
         np.zeros((3, 3)),  # D
+        np.zeros((3, 3)),  # tmpm
         np.zeros((n1, 3)),  # rhs
         np.zeros((n1, 3)),  # kx1
         np.zeros((n1, 3)),  # kv1
@@ -555,16 +531,31 @@ def _workspace(N: int) -> tuple:
         np.zeros((n1, 3)),  # kv2
         np.zeros((n1, 3)),  # r2
         np.zeros((n1, 3)),  # v2
-        np.zeros((n1, 3)),  # F2
-        np.zeros((n1, 3, 3)),  # M2
-        np.zeros((N, 3, 3)),  # Ks2
-        np.zeros((N, 3, 3)),  # Cs2
-        np.zeros(n1),  # Kz2
-        np.zeros((n1, 3, 3)),  # C2
         np.zeros(3),  # tmp3
-        np.zeros((3, 3)),  # tmpm
-        np.zeros((3, 3)),  # Minv
     )
+
+
+def node_forces(model: LineModel, r: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Net force on every node and the node mass matrices (for checks and diagnostics).
+
+    Parameters
+    ----------
+    model : LineModel
+    r, v : numpy.ndarray, shape (N + 1, 3)
+        Node positions (m) and velocities (m/s).
+
+    Returns
+    -------
+    F : numpy.ndarray, shape (N + 1, 3)
+        Net force (tension, internal damping, weight, drag, seabed), N.
+    M : numpy.ndarray, shape (N + 1, 3, 3)
+        Mass plus added mass, kg.
+    """
+    ws = _stage_workspace(model.n_segments)
+    _node_forces(np.ascontiguousarray(r, float), np.ascontiguousarray(v, float), model.params, 0.0, True, ws)
+    F, tang, am, bm = ws[0], ws[5], ws[6], ws[7]
+    M = am[:, None, None] * np.eye(3) + bm[:, None, None] * tang[:, :, None] * tang[:, None, :]
+    return F.copy(), M
 
 
 def hermite(p0: np.ndarray, v0: np.ndarray, p1: np.ndarray, v1: np.ndarray, T: float, s: float) -> tuple[np.ndarray, np.ndarray]:
