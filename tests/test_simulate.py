@@ -22,7 +22,7 @@ K6 = np.diag([0.0, 0.0, 3.82e6, 1.0e9, 1.0e9, 0.0])
 KM = np.diag([7.08e4, 7.08e4, 1.91e4, 8.73e7, 8.73e7, 1.17e8])
 
 
-def synthetic_model(*, radiation=True, strips=False, thrust=False, kind="linear"):
+def synthetic_model(*, radiation=True, strips=False, thrust=False, kind="linear", kernel=False):
     """A 6-DOF platform with one radiation state per DOF: Z(w) = b / (alpha - i w)."""
     om = np.linspace(0.02, 3.0, 150)
     hd = np.deg2rad(np.arange(-180.0, 180.0, 30.0))
@@ -38,9 +38,13 @@ def synthetic_model(*, radiation=True, strips=False, thrust=False, kind="linear"
     kw = dict(mass=M6, stiffness=K6, omega=om, headings=hd, excitation=exc, drift=drift,
               mooring_kind=kind, mooring_stiffness=KM, fairleads=np.array(
                   [[20.434, 35.393, -14.0], [-40.868, 0.0, -14.0], [20.434, -35.393, -14.0]]))
-    if radiation:
-        alpha = np.array([0.5, 0.5, 1.0, 0.8, 0.8, 0.5])
-        beta = np.array([2.0e5, 2.0e5, 1.0e6, 3.0e8, 3.0e8, 1.0e8])
+    alpha = np.array([0.5, 0.5, 1.0, 0.8, 0.8, 0.5])
+    beta = np.array([2.0e5, 2.0e5, 1.0e6, 3.0e8, 3.0e8, 1.0e8])
+    if radiation and kernel:  # the same memory as a kernel K(t) = beta exp(-alpha t)
+        t = np.arange(0.0, 40.0 + 1e-9, 0.05)
+        kw.update(kernel=beta[None, :] * np.exp(-alpha[None, :] * t[:, None]),
+                  kernel_pairs=np.stack([np.arange(6), np.arange(6)], axis=1), kernel_dt=0.05)
+    elif radiation:
         kw.update(rad_a=np.diag(-alpha), rad_b=np.diag(beta), rad_c=np.eye(6))
     if strips:
         kw.update(strip_pos=np.array([[0.0, 0.0, -10.0], [-28.87, 0.0, -20.0]]),
@@ -76,6 +80,12 @@ def test_undamped_decay_periods_match_closed_form():
         assert x[pk].max() == pytest.approx(x[0], rel=0.002)
 
 
+def test_kernel_and_state_space_memories_agree():
+    ss, ker = synthetic_model(), synthetic_model(kernel=True)
+    w = np.linspace(0.05, 2.0, 12)
+    np.testing.assert_allclose(sim.radiation_impedance(ker, w), sim.radiation_impedance(ss, w), rtol=0.01, atol=1.0)
+
+
 def test_decay_with_radiation_memory_matches_linear_periods():
     m = synthetic_model()
     t_lin = sim.linear_natural_periods(m)
@@ -88,8 +98,9 @@ def test_decay_with_radiation_memory_matches_linear_periods():
         assert rec.motion[0, d, pk[-1]] < rec.motion[0, d, 0]  # radiation damps
 
 
-def test_regular_wave_matches_frequency_domain_rao():
-    m = synthetic_model()
+@pytest.mark.parametrize("kernel", [False, True], ids=["statespace", "convolution"])
+def test_regular_wave_matches_frequency_domain_rao(kernel):
+    m = synthetic_model(kernel=kernel)
     grid = env.record_grid(600.0, 300.0, 0.1)
     k = int(round(0.7 / grid.d_omega))
     w = k * grid.d_omega

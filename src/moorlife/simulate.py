@@ -61,6 +61,7 @@ __all__ = [
     "frequency_response",
     "linear_natural_periods",
     "radiation_impedance",
+    "effective_added_mass_inf",
     "static_equilibrium",
 ]
 
@@ -161,6 +162,13 @@ class ModelInputs:
         Constant load trimming the platform to its design draft and even keel with the
         mooring at rest (the ballast adjustment of each mooring system): minus the heave,
         roll and pitch components of the mooring load at rest, N and N m.
+    kernel : (nlag, npairs)
+        Radiation retardation kernel ``K_ij(k kernel_dt)`` of the coupled DOF pairs
+        ``kernel_pairs (npairs, 2)``: when non-empty, the radiation force is the convolution
+        ``-int K(tau) v(t - tau) dtau`` (trapezoid, velocity history at the integration step)
+        instead of the state space (which must then be empty).
+    kernel_dt : float
+        Sampling of ``kernel``, s.
     line_info : dict
         ``link_diameter`` (m), ``mbs`` (N), ``chain`` of the lines (for fatigue).
     """
@@ -194,6 +202,9 @@ class ModelInputs:
     mooring_stiffness: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
     mooring_args: tuple = ()
     static_load: np.ndarray = field(default_factory=lambda: np.zeros(6))
+    kernel: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+    kernel_pairs: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64))
+    kernel_dt: float = 0.0
     line_info: Mapping[str, Any] = field(default_factory=dict)
 
 
@@ -225,9 +236,11 @@ def build_model(**kwargs: Any) -> ModelInputs:
     kw.setdefault("depth", 200.0)
     kw.setdefault("rho", 1025.0)
     kw.setdefault("gravity", env.G)
-    arrays = {k: (np.asarray(v, dtype=complex if k == "excitation" else float)
-                  if k not in ("mooring_kind", "mooring_args", "line_info", "depth", "rho", "gravity") else v)
+    scalars = ("mooring_kind", "mooring_args", "line_info", "depth", "rho", "gravity", "kernel_dt", "kernel_pairs")
+    arrays = {k: (np.asarray(v, dtype=complex if k == "excitation" else float) if k not in scalars else v)
               for k, v in kw.items()}
+    if "kernel_pairs" in arrays:
+        arrays["kernel_pairs"] = np.asarray(arrays["kernel_pairs"], dtype=np.int64).reshape(-1, 2)
     m = ModelInputs(**arrays)
     for key, shape in (("mass", (6, 6)), ("stiffness", (6, 6)), ("damping", (6, 6))):
         if getattr(m, key).shape != shape:
@@ -238,6 +251,8 @@ def build_model(**kwargs: Any) -> ModelInputs:
     nw, nh = m.omega.size, m.headings.size
     if m.excitation.shape != (nw, nh, 6) or m.drift.shape != (nw, nh, 6):
         raise ValueError(f"excitation/drift: expected ({nw}, {nh}, 6), got {m.excitation.shape}, {m.drift.shape}")
+    if m.kernel.size and (m.kernel.shape[1] != m.kernel_pairs.shape[0] or not m.kernel_dt > 0 or nr):
+        raise ValueError("radiation: a kernel needs kernel_pairs, kernel_dt > 0 and no state space")
     if np.any(np.diff(m.headings) <= 0):
         raise ValueError("headings must increase strictly")
     if m.mooring_kind not in ("linear", "quasistatic", "dynamic"):
@@ -603,16 +618,22 @@ def _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
 
 @numba.njit(cache=True)
 def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, motion, accel, tension, fmoor6, acc,
+             hist, ker, kpi, kpj,
              force, wind, wdir, kin, kin_every, minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc,
              spos, saxis, scdn, scda, hub, tv, tf, fa, fb, fc, fd):  # pragma: no cover - numba
     """One coupled step ``j -> j + 1`` of the batch, with recording (kept sample ``i``).
 
-    The platform is driven over the step by the mean of the mooring forces at the start
-    (``f_prev``) and at the predicted end (``f_new``); ``f_prev`` then takes ``f_new``.
-    ``ten`` is the line tension at ``t_{j+1}`` (kept as sample ``i + 1``).
+    The load held constant over the step (``fmoor6``) is the mooring force, the trim load and,
+    with a kernel, the radiation convolution. The platform is driven by the mean of the
+    mooring forces at the start (``f_prev``) and at the predicted end (``f_new``); ``f_prev``
+    then takes ``f_new``. ``ten`` is the line tension at ``t_{j+1}`` (kept as sample ``i + 1``).
+    ``hist (B, nlag, 6)`` is the circular velocity history of the convolution.
     """
     nb = q.shape[0]
     nt = motion.shape[2]
+    for b in range(nb):
+        for d in range(6):
+            fmoor6[b, d] = 0.0
     if coupled:
         for b in range(nb):
             for l in range(f_prev.shape[1]):
@@ -623,13 +644,30 @@ def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, 
             for l in range(f_prev.shape[1]):
                 for c in range(3):
                     f_prev[b, l, c] = f_new[b, l, c]
-        for b in range(nb):
-            for d in range(6):
-                fmoor6[b, d] += static[d]
         if 0 <= i + 1 < nt:
             for b in range(nb):
                 for l in range(ten.shape[1]):
                     tension[b, l, i + 1] = ten[b, l]
+    for b in range(nb):
+        for d in range(6):
+            fmoor6[b, d] += static[d]
+    nlag = ker.shape[0]
+    if nlag > 0:
+        npair = ker.shape[1]
+        jj = j % nlag
+        kmax = min(j + 1, nlag)
+        for b in range(nb):
+            for d in range(6):
+                hist[b, jj, d] = v[b, d]
+            for p in range(npair):
+                acc_p = 0.0
+                for k in range(kmax):
+                    w = 0.5 if (k == 0 or k == nlag - 1) else 1.0
+                    idx = jj - k
+                    if idx < 0:
+                        idx += nlag
+                    acc_p += w * ker[k, p] * hist[b, idx, kpj[p]]
+                fmoor6[b, kpi[p]] -= dt * acc_p
     if i >= 0:
         for b in range(nb):
             for d in range(6):
@@ -703,6 +741,16 @@ def _make_mooring(model: ModelInputs, batch: int):
 # --------------------------------------------------------------------------------------
 # integration
 # --------------------------------------------------------------------------------------
+
+
+def _kernel_at(model: ModelInputs, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The retardation kernel resampled at the integration step, ``(nlag, npairs)``, and its pairs."""
+    if model.kernel.size == 0:
+        return np.zeros((0, 0)), np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    t_src = np.arange(model.kernel.shape[0]) * model.kernel_dt
+    t = np.arange(0.0, t_src[-1] + 1e-9, dt)
+    ker = np.stack([np.interp(t, t_src, model.kernel[:, p]) for p in range(model.kernel.shape[1])], axis=1)
+    return np.ascontiguousarray(ker), model.kernel_pairs[:, 0].copy(), model.kernel_pairs[:, 1].copy()
 
 
 @dataclass(frozen=True)
@@ -795,6 +843,8 @@ def integrate(
             model.strip_cdn, model.strip_cda, hub, model.thrust_speed, model.thrust_force,
             model.filt_a, model.filt_b, model.filt_c, model.filt_d)
     coupled = not linear
+    ker, kpi, kpj = _kernel_at(model, dt)
+    hist = np.zeros((nb, ker.shape[0], 6))
     f_new = np.zeros((nb, 3, 3))
     ten = np.zeros((nb, 3))
     static = np.asarray(model.static_load, dtype=float)
@@ -808,7 +858,7 @@ def integrate(
             f_new[...] = f_step
             ten[...] = moor.tension(mstate)
         _advance(j, j - j0, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, motion, accel, tension,
-                 fmoor6, acc, *args)
+                 fmoor6, acc, hist, ker, kpi, kpj, *args)
     if linear:
         tension[:] = np.nan
     return Record(dt=dt, motion=motion, accel=accel, tension=tension)
@@ -820,22 +870,25 @@ def integrate(
 
 
 def radiation_impedance(model: ModelInputs, omega: np.ndarray) -> np.ndarray:
-    """Frequency response of the radiation state space, ``Z(omega) = C (-i omega I - A)^-1 B``.
+    """Frequency response of the model's radiation memory, ``Z(omega)``, ``(nw, 6, 6)`` complex.
 
     The radiation force on a harmonic velocity ``v exp(-i omega t)`` is ``-Z(omega) v``, so
-    ``Re(Z) = B(omega)`` and ``-Im(Z) / omega = A(omega) - A_inf``.
-
-    Returns
-    -------
-    numpy.ndarray, shape (nw, 6, 6), complex
+    ``Re(Z) = B(omega)`` and ``-Im(Z) / omega = A(omega) - A_inf``. State space:
+    ``Z = C (-i omega I - A)^-1 B``; kernel: ``Z = int_0^T K(t) exp(i omega t) dt`` (trapezoid).
     """
+    w = np.atleast_1d(np.asarray(omega, dtype=float))
+    out = np.zeros((w.size, 6, 6), dtype=complex)
     nr = model.rad_a.shape[0]
-    out = np.zeros((np.size(omega), 6, 6), dtype=complex)
-    if nr == 0:
-        return out
-    eye = np.eye(nr)
-    for i, w in enumerate(np.atleast_1d(omega)):
-        out[i] = model.rad_c @ np.linalg.solve(-1j * w * eye - model.rad_a, model.rad_b)
+    if nr:
+        eye = np.eye(nr)
+        for i, wi in enumerate(w):
+            out[i] = model.rad_c @ np.linalg.solve(-1j * wi * eye - model.rad_a, model.rad_b)
+    if model.kernel.size:
+        t = np.arange(model.kernel.shape[0]) * model.kernel_dt
+        e = np.exp(1j * np.outer(w, t))  # (nw, nt)
+        z = np.trapezoid(e[:, :, None] * model.kernel[None, :, :], t, axis=1)  # (nw, npairs)
+        for p, (i, j) in enumerate(model.kernel_pairs):
+            out[:, i, j] += z[:, p]
     return out
 
 
@@ -1219,20 +1272,70 @@ def platform_from(pm: Any, platform_cfg: Mapping[str, Any], sim_cfg: Mapping[str
                             startup_ramp=pm.startup_ramp)
     filt = turbine.notch_filter(pm.pitch_filter_centre, pm.pitch_filter_quality)
     damp = np.diag(np.asarray(sim_cfg.get("extra_damping", [0.0] * 6), dtype=float))
-    return build_model(
+    depth = float(pm.water_depth)
+    if not np.isfinite(depth):  # e.g. a WAMIT import without the depth
+        depth = float(platform_cfg["environment"]["water_depth"])
+    radiation = str(sim_cfg.get("radiation", "convolution"))
+    if radiation == "convolution":
+        memory = float(sim_cfg.get("radiation_memory", 60.0))
+        nk = int(np.searchsorted(np.asarray(pm.kernel_t), memory + 1e-9))
+        kern6 = np.asarray(pm.kernel, float)[:nk]
+        pairs = _kernel_pairs(kern6)
+        rad = dict(kernel=np.stack([kern6[:, i, j] for i, j in pairs], axis=1), kernel_pairs=pairs,
+                   kernel_dt=float(pm.kernel_dt))
+    elif radiation == "statespace":
+        rad = dict(rad_a=pm.ss_A, rad_b=pm.ss_B, rad_c=pm.ss_C)
+    else:
+        raise ValueError(f"config key 'simulation.radiation' = {radiation!r}: expected 'convolution' or 'statespace'")
+    model = build_model(
         mass=np.asarray(pm.mass, float) + np.asarray(pm.added_mass_inf, float),
         stiffness=np.asarray(pm.stiffness, float),
         damping=damp,
-        rad_a=pm.ss_A, rad_b=pm.ss_B, rad_c=pm.ss_C,
+        **rad,
         omega=pm.omega, headings=pm.headings,
         excitation=np.conj(np.asarray(pm.excitation)), drift=pm.drift,
         strip_pos=strips[0], strip_axis=strips[1], strip_cdn=strips[2], strip_cda=strips[3],
         hub=np.asarray(pm.hub_point, float), thrust_speed=v, thrust_force=thrust,
         filt_a=filt.A, filt_b=np.asarray(filt.B, float).reshape(-1, 1), filt_c=np.asarray(filt.C, float).reshape(1, -1),
         filt_d=np.array([[float(filt.D)]]),
-        depth=float(pm.water_depth), rho=rho, gravity=float(pm.g),
+        depth=depth, rho=rho, gravity=float(pm.g),
         mooring_stiffness=np.asarray(pm.mooring_stiffness, float),
     )
+    a_inf = effective_added_mass_inf(model, np.asarray(pm.omega, float), np.asarray(pm.added_mass, float))
+    return replace(model, mass=np.asarray(pm.mass, float) + a_inf)
+
+
+def _kernel_pairs(kern: np.ndarray, rel: float = 1e-3) -> np.ndarray:
+    """DOF pairs ``(i, j)`` whose kernel matters: ``max|K_ij| > rel sqrt(max|K_ii| max|K_jj|)``."""
+    peak = np.abs(kern).max(axis=0)
+    diag = np.sqrt(np.outer(np.diag(peak), np.diag(peak)))
+    i, j = np.nonzero((peak > rel * diag) & (peak > 0))
+    return np.stack([i, j], axis=1).astype(np.int64)
+
+
+def effective_added_mass_inf(
+    model: ModelInputs, omega: np.ndarray, added_mass: np.ndarray, band: tuple[float, float] = (0.2, 2.5)
+) -> np.ndarray:
+    """Infinite-frequency added mass consistent with the model's radiation memory (Ogilvie).
+
+    ``A_inf = mean_omega [A_BEM(omega) - (A(omega) - A_inf)_memory]`` over the BEM frequencies
+    in ``band`` (rad/s), so that ``A_inf`` plus the memory's frequency-dependent part
+    reproduces the BEM added mass where the platform responds. A BEM's own ``A_inf`` can be
+    inconsistent with the kernel built from a damping curve truncated at ``omega_max``
+    (the OC4 WAMIT surge value differs by ~25 %); this choice keeps natural periods and RAOs
+    on the BEM ``A(omega)``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (6, 6)
+    """
+    w = np.asarray(omega, dtype=float)
+    sel = (w >= band[0]) & (w <= band[1])
+    if not sel.any():
+        raise ValueError(f"no BEM frequency in the band {band} rad/s")
+    z = radiation_impedance(model, w[sel])
+    a_mem = -z.imag / w[sel][:, None, None]
+    return (np.asarray(added_mass, dtype=float)[sel] - a_mem).mean(axis=0)
 
 
 def attach_mooring(model: ModelInputs, mooring_row: Mapping[str, Any], mooring_cfg: Mapping[str, Any] | None) -> ModelInputs:
