@@ -484,10 +484,12 @@ def _hermite(p0, v0, p1, v1, T, s, pos, vel):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
-def _step_batch(r, v, r_new, v_new, dt, nsub, p, w, fa, fb, va, vb, p0, v0, forces, tension):
+def _step_batch(r, v, r_new, v_new, dt, nsub, p, buf, forces, tension):
     """Advance every line of every batch member by dt (nsub ROS2 substeps)."""
     nb, nl = r.shape[0], r.shape[1]
     N = int(p[_N])
+    w, vec = _views(buf, N)
+    fa, fb, va, vb, p0, v0 = vec[0], vec[1], vec[2], vec[3], vec[4], vec[5]
     h = dt / nsub
     for b in range(nb):
         for k in range(nl):
@@ -508,31 +510,82 @@ def _step_batch(r, v, r_new, v_new, dt, nsub, p, w, fa, fb, va, vb, p0, v0, forc
             tension[b, k] = math.sqrt(forces[b, k, 0] ** 2 + forces[b, k, 1] ** 2 + forces[b, k, 2] ** 2)
 
 
-def _stage_workspace(N: int) -> tuple:
+def _work_size(N: int) -> int:
     n1 = N + 1
-    return (np.zeros((n1, 3)), np.zeros(N), np.zeros((N, 3)), np.zeros(N), np.zeros(N), np.zeros((n1, 3)),
-            np.zeros(n1), np.zeros(n1), np.zeros((n1, 3, 3)), np.zeros(n1))
+    stage = 3 * n1 + N + 3 * N + N + N + 3 * n1 + n1 + n1 + 9 * n1 + n1
+    return 2 * stage + 9 * N + 9 * n1 + 9 + 9 + 7 * 3 * n1 + 3 + 6 * 3
 
 
-def _workspace(N: int) -> tuple:
-    """Work arrays of one line step, allocated once per model."""
+@njit(cache=True, fastmath=True, error_model="numpy")
+def _take(buf, o, n):
+    return buf[o:o + n], o + n
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def _stage_views(buf, o, N):
     n1 = N + 1
-    return (
-        _stage_workspace(N),  # stage 1: forces and matrix pieces
-        _stage_workspace(N),  # stage 2
-        np.zeros((N, 3, 3)),  # S (coupling blocks)
-        np.zeros((n1, 3, 3)),  # Winv
-        np.zeros((3, 3)),  # D
-        np.zeros((3, 3)),  # tmpm
-        np.zeros((n1, 3)),  # rhs
-        np.zeros((n1, 3)),  # kx1
-        np.zeros((n1, 3)),  # kv1
-        np.zeros((n1, 3)),  # kx2
-        np.zeros((n1, 3)),  # kv2
-        np.zeros((n1, 3)),  # r2
-        np.zeros((n1, 3)),  # v2
-        np.zeros(3),  # tmp3
-    )
+    F, o = _take(buf, o, 3 * n1)
+    segf, o = _take(buf, o, N)
+    sq, o = _take(buf, o, 3 * N)
+    sa, o = _take(buf, o, N)
+    sg, o = _take(buf, o, N)
+    tang, o = _take(buf, o, 3 * n1)
+    am, o = _take(buf, o, n1)
+    bm, o = _take(buf, o, n1)
+    C, o = _take(buf, o, 9 * n1)
+    Kz, o = _take(buf, o, n1)
+    ws = (F.reshape((n1, 3)), segf, sq.reshape((N, 3)), sa, sg, tang.reshape((n1, 3)), am, bm,
+          C.reshape((n1, 3, 3)), Kz)
+    return ws, o
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def _views(buf, N):
+    """Work arrays of one line step as views into one flat buffer (see :func:`_work_size`).
+
+    ``(stage1, stage2, S, Winv, D, tmpm, rhs, kx1, kv1, kx2, kv2, r2, v2, tmp3)`` and the
+    six 3-vectors used by :func:`_step_batch`. One flat buffer keeps the dispatch of the
+    numba entry point cheap (a few plain arrays instead of nested tuples).
+    """
+    n1 = N + 1
+    ws1, o = _stage_views(buf, 0, N)
+    ws2, o = _stage_views(buf, o, N)
+    S, o = _take(buf, o, 9 * N)
+    Winv, o = _take(buf, o, 9 * n1)
+    D, o = _take(buf, o, 9)
+    tmpm, o = _take(buf, o, 9)
+    rhs, o = _take(buf, o, 3 * n1)
+    kx1, o = _take(buf, o, 3 * n1)
+    kv1, o = _take(buf, o, 3 * n1)
+    kx2, o = _take(buf, o, 3 * n1)
+    kv2, o = _take(buf, o, 3 * n1)
+    r2, o = _take(buf, o, 3 * n1)
+    v2, o = _take(buf, o, 3 * n1)
+    tmp3, o = _take(buf, o, 3)
+    vec, o = _take(buf, o, 18)
+    w = (ws1, ws2, S.reshape((N, 3, 3)), Winv.reshape((n1, 3, 3)), D.reshape((3, 3)), tmpm.reshape((3, 3)),
+         rhs.reshape((n1, 3)), kx1.reshape((n1, 3)), kv1.reshape((n1, 3)), kx2.reshape((n1, 3)),
+         kv2.reshape((n1, 3)), r2.reshape((n1, 3)), v2.reshape((n1, 3)), tmp3)
+    return w, vec.reshape((6, 3))
+
+
+def _workspace(N: int) -> np.ndarray:
+    """Flat work buffer of one line step, allocated once per model."""
+    return np.zeros(_work_size(N))
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def _node_forces_flat(r, v, p, buf):
+    w, _ = _views(buf, int(p[_N]))
+    ws = w[0]
+    _node_forces(r, v, p, 0.0, True, ws)
+    return ws[0].copy(), ws[5].copy(), ws[6].copy(), ws[7].copy()
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def _static_solve_flat(r, p, buf, iters, tol):
+    w, _ = _views(buf, int(p[_N]))
+    return _static_solve(r, p, w, iters, tol)
 
 
 def node_forces(model: LineModel, r: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -551,11 +604,10 @@ def node_forces(model: LineModel, r: np.ndarray, v: np.ndarray) -> tuple[np.ndar
     M : numpy.ndarray, shape (N + 1, 3, 3)
         Mass plus added mass, kg.
     """
-    ws = _stage_workspace(model.n_segments)
-    _node_forces(np.ascontiguousarray(r, float), np.ascontiguousarray(v, float), model.params, 0.0, True, ws)
-    F, tang, am, bm = ws[0], ws[5], ws[6], ws[7]
+    buf = _workspace(model.n_segments)
+    F, tang, am, bm = _node_forces_flat(np.ascontiguousarray(r, float), np.ascontiguousarray(v, float), model.params, buf)
     M = am[:, None, None] * np.eye(3) + bm[:, None, None] * tang[:, :, None] * tang[:, None, :]
-    return F.copy(), M
+    return F, M
 
 
 def hermite(p0: np.ndarray, v0: np.ndarray, p1: np.ndarray, v1: np.ndarray, T: float, s: float) -> tuple[np.ndarray, np.ndarray]:
@@ -617,7 +669,6 @@ class DynamicMooring:
         self.settings = settings
         self.batch = int(batch)
         self._w = _workspace(model.n_segments)
-        self._buf = tuple(np.zeros(3) for _ in range(6))
 
     def init(self, r_fair: np.ndarray, relax: float | None = None) -> DynamicState:
         """Static catenary shape at fairlead positions ``r_fair (B, L, 3)``, then relaxed.
@@ -636,7 +687,7 @@ class DynamicMooring:
         tol = 1e-6 * self.props.wet_weight * self.layout.length
         for b in range(B):
             for k in range(L):
-                _static_solve(r[b, k], self.model.params, self._w, 200, tol)
+                _static_solve_flat(r[b, k], self.model.params, self._w, 200, tol)
         state = DynamicState(r=r, v=np.zeros_like(r), forces=np.zeros((B, L, 3)), tension=np.zeros((B, L)))
         relax = self.settings.relaxation_time if relax is None else float(relax)
         zero = np.zeros((B, L, 3))
@@ -661,7 +712,7 @@ class DynamicMooring:
         if dt <= 0.0:
             nsub, dt = 1, 1e-6
         _step_batch(state.r, state.v, np.ascontiguousarray(r_fair, dtype=float), np.ascontiguousarray(v_fair, dtype=float),
-                    float(dt), nsub, self.model.params, self._w, *self._buf, state.forces, state.tension)
+                    float(dt), nsub, self.model.params, self._w, state.forces, state.tension)
         return state.forces, state
 
     def tension(self, state: DynamicState) -> np.ndarray:
