@@ -7,11 +7,14 @@ import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from moorlife import names
 from moorlife.conventions import circular_difference
 from moorlife.io import open_zarr, write_zarr
 from moorlife.selection import (
+    VALIDATION_STREAM_KEY,
     class_labels,
     discrete_states,
     mda,
@@ -111,6 +114,23 @@ def test_fast_mda_equals_bruteforce_on_random_data(dtype, seed):
     np.testing.assert_array_equal(fast, ref)
     assert fast[0] == start
     assert np.unique(fast).size == fast.size
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    data=st.lists(
+        st.tuples(*(st.integers(0, 4) for _ in range(5))), min_size=1, max_size=40
+    ),
+    frac=st.floats(0.0, 1.0),
+    dtype=st.sampled_from([np.float32, np.float64]),
+)
+def test_fast_mda_equals_bruteforce_property(data, frac, dtype):
+    """Any small data set (coarse values: ties, duplicates, constant columns), any n."""
+    pts = np.array(data, dtype=float) * np.array([3.0, 90.0, 1.5, 4.0, 45.0])
+    n = max(1, round(frac * len(data)))
+    fast = mda(pts, n, is_direction=MASK, dtype=dtype)
+    np.testing.assert_array_equal(fast, mda_bruteforce(pts, n, is_direction=MASK, dtype=dtype))
+    assert np.unique(fast).size == n
 
 
 def test_fast_mda_equals_bruteforce_with_planted_ties():
@@ -310,6 +330,12 @@ def test_select_cases_contract(tmp_path):
     assert ds.attrs["norm_span"][1] == 180.0
     assert ds["hs"].attrs["norm_lo"] == pytest.approx(float(hc["hs"].min()))
     assert np.all(ds["nearest_train_distance"].values > 0)
+    # the documented validation rule: seeded uniform sample from a labelled stream
+    pts = np.column_stack([hc[v].values for v in names.METOCEAN_VARS])
+    idx = ds["hindcast_index"].values
+    stream = np.random.SeedSequence([5, VALIDATION_STREAM_KEY])
+    expected = select_validation(pts, 12, exclude=idx[:40], is_direction=MASK, seed=stream)
+    np.testing.assert_array_equal(idx[40:], expected)
     # the store round-trips through the atomic writer
     write_zarr(ds, tmp_path / "cases.zarr")
     back = open_zarr(tmp_path / "cases.zarr")
@@ -365,6 +391,7 @@ def test_discrete_states_contract(tmp_path):
     assert back.attrs["hs_edges"] == [0.0, 1.5, 3.0, 4.5]
 
 
+@pytest.mark.slow  # renders two full figures
 def test_figures_render_from_round_tripped_stores(tmp_path):
     from moorlife.plots.selection import plot_discrete_states, plot_selection_cloud
 

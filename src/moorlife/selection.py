@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import logging
 import time as _time
+import zlib
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
@@ -45,6 +46,7 @@ from moorlife import names
 
 __all__ = [
     "VALIDATION_RULES",
+    "VALIDATION_STREAM_KEY",
     "DEFAULT_HS_EDGES",
     "DEFAULT_WIND_EDGES",
     "DEFAULT_TP_EDGES",
@@ -76,6 +78,9 @@ DEFAULT_TP_EDGES: tuple[float, ...] = (0.0, 6.0, 9.0, 12.0)  # s
 
 #: Normalised span of a direction: deg / 180, so the folded difference is at most 1.
 _DIR_SPAN = 180.0
+#: Label of the random stream of the "random" validation rule: ``SeedSequence([seed, key])``,
+#: so it cannot coincide with another stage's stream drawn from the same global seed.
+VALIDATION_STREAM_KEY = zlib.crc32(b"moorlife.selection.validate")
 _BLOCK = 4096  # rows per block in the O(M*K) distance helpers (bounds memory)
 
 
@@ -719,7 +724,8 @@ def select_cases(
     rule : {"random", "mda"}
         Validation rule, see :func:`select_validation`.
     seed : int
-        Seed of the ``"random"`` validation rule.
+        The study's global seed; the ``"random"`` validation rule draws from
+        ``SeedSequence([seed, VALIDATION_STREAM_KEY])``.
     source : str
         Name of the hindcast (a path) quoted in error messages.
 
@@ -749,8 +755,9 @@ def select_cases(
     train = mda(pts, n_train, is_direction=mask, start=start, lo=lo, span=span)
     _log.info("%s: MDA picked %d of %d states in %.2f s (start: largest hs, row %d)",
               source, n_train, pts.shape[0], _time.perf_counter() - t0, start)
+    stream = np.random.SeedSequence([int(seed), VALIDATION_STREAM_KEY])
     valid = select_validation(
-        pts, n_validate, exclude=train, is_direction=mask, rule=rule, seed=seed, lo=lo, span=span
+        pts, n_validate, exclude=train, is_direction=mask, rule=rule, seed=stream, lo=lo, span=span
     )
     _log.info("%s: %d validation states by rule %r (seed %d)", source, valid.size, rule, seed)
     index = np.concatenate([train, valid]).astype(np.int64)
@@ -796,6 +803,7 @@ def select_cases(
             "n_validate": int(valid.size),
             "validation_rule": rule,
             "seed": int(seed),
+            "validation_stream": f"numpy SeedSequence([seed, {VALIDATION_STREAM_KEY}]) (crc32 of 'moorlife.selection.validate')",
             "n_hindcast": int(pts.shape[0]),
             "norm_variables": list(names.METOCEAN_VARS),
             "norm_lo": [float(v) for v in lo],
