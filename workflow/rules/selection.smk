@@ -12,6 +12,10 @@ rule selection:
         n_validate=config["selection"]["n_validate"],
         rule=config["selection"]["validation_rule"],
         seed=config["seed"],
+    resources:
+        mem_mb=1000,
+    conda:
+        "../../envs/moorlife.yaml"
     log:
         "logs/selection/selection.log",
     script:
@@ -28,6 +32,10 @@ rule discrete:
         wind_edges=config["selection"]["discrete"]["wind_edges"],
         tp_edges=config["selection"]["discrete"]["tp_edges"],
         sector=config["selection"]["discrete"]["direction_sector"],
+    resources:
+        mem_mb=500,
+    conda:
+        "../../envs/moorlife.yaml"
     log:
         "logs/selection/discrete.log",
     script:
@@ -42,6 +50,10 @@ rule selection_figures:
     output:
         cloud=report("results/figures/selection_cloud.png", category="Selection"),
         discrete=report("results/figures/discrete_states.png", category="Selection"),
+    resources:
+        mem_mb=1000,
+    conda:
+        "../../envs/moorlife.yaml"
     log:
         "logs/selection/figures.log",
     script:
