@@ -411,3 +411,43 @@ def test_figures_render_from_round_tripped_stores(tmp_path):
     np.testing.assert_allclose([b.get_height() for b in bars], 100.0 * disc["probability"].values)
     fig.savefig(tmp_path / "discrete.png", dpi=40)
     assert (tmp_path / "cloud.png").stat().st_size > 0
+
+
+def _run_script(name: str, smk) -> None:
+    """Run a workflow script's main(smk) as Snakemake would (the adapter layer)."""
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "workflow" / "scripts" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(f"_script_{name}", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    module.main(smk)
+
+
+def test_workflow_scripts_write_contract_stores(tmp_path):
+    from types import SimpleNamespace as NS
+
+    hc = make_hindcast(1500, seed=12)
+    write_zarr(hc, tmp_path / "hindcast.zarr")
+    src = [str(tmp_path / "hindcast.zarr")]
+    params = NS(n_train=20, n_validate=5, rule="mda", seed=3)
+    _run_script("selection", NS(input=src, output=[str(tmp_path / "cases.zarr")], params=params,
+                                log=[str(tmp_path / "selection.log")]))
+    params = NS(hs_edges=[0.0, 1.5, 3.0], wind_edges=[0.0, 7.0, 14.0], tp_edges=[0.0, 6.0, 9.0, 12.0], sector=15.0)
+    _run_script("discrete", NS(input=src, output=[str(tmp_path / "discrete.zarr")], params=params,
+                               log=[str(tmp_path / "discrete.log")]))
+    cases, disc = open_zarr(tmp_path / "cases.zarr"), open_zarr(tmp_path / "discrete.zarr")
+    assert cases.sizes[names.CASE] == 25 and cases.attrs["validation_rule"] == "mda"
+    assert disc.attrs["direction_sector"] == 15.0 and float(disc["probability"].sum()) == pytest.approx(1.0)
+    assert "MDA picked 20 of 1500" in (tmp_path / "selection.log").read_text()
+    # a bad hindcast fails with the file named, and the log keeps the reason
+    bad = hc.copy(deep=True)
+    bad["tp"][3] = np.nan
+    write_zarr(bad, tmp_path / "bad.zarr")
+    with pytest.raises(ValueError, match=r"bad\.zarr: variable 'tp' row 3"):
+        _run_script("selection", NS(input=[str(tmp_path / "bad.zarr")], output=[str(tmp_path / "x.zarr")],
+                                    params=NS(n_train=5, n_validate=2, rule="random", seed=0),
+                                    log=[str(tmp_path / "bad.log")]))
+    assert "variable 'tp' row 3" in (tmp_path / "bad.log").read_text()
+    assert not (tmp_path / "x.zarr").exists()
