@@ -240,3 +240,68 @@ def test_bad_simulation_values_are_named():
         lifecycle.life_damage(np.array([[1.0, -1.0]]))
     with pytest.raises(ValueError, match="lifecycle.rbf.shape"):
         lifecycle.rbf_settings({"shape": "magic"})
+
+
+@pytest.mark.slow
+def test_stores_comparison_and_sensitivity_end_to_end(tmp_path):
+    """The io layer on tiny synthetic stores: lifecycle.zarr, summary.csv, recommendation, figures."""
+    import yaml
+
+    from moorlife.io import lifecycle as iol
+    from moorlife.io import open_zarr, write_zarr
+
+    hc = _hindcast(1500, seed=8)
+    cases = _cases(hc, 50, 10, seed=9)
+    write_zarr(hc, tmp_path / "hindcast.zarr")
+    write_zarr(cases, tmp_path / "cases.zarr")
+    systems = ["MS1", "MS2"]
+    pd.DataFrame({
+        "mooring_system": systems, "mass_kg_per_m": [92.0, 125.6], "pretension_kN": [811.0, 1112.0],
+        "link_diameter_mm": [68.0, 79.0], "equivalent_diameter_m": [0.1199, 0.1398], "EA_N": [5.43e8, 7.45e8],
+        "MBS_N": [5420364.0, 7200284.0], "chain": ["studless", "studless"],
+    }).to_csv(tmp_path / "ms.tsv", sep="\t", index=False)
+    write_zarr(xr.Dataset({"probability": ("bin", [0.4, 0.6])}, coords={"bin": [0, 1]}), tmp_path / "bins.zarr")
+    cfg = {"rbf": {"shape": "fixed"}, "adaptive": {"n_suggest": 3}, "recommendation": {"curves": ["sn", "tn"]}}
+    for k, ms in enumerate(systems):
+        s = _sims(cases, damage=np.array([2e-6, 5e-6, 1e-6]) / 10 ** (2 * k))
+        s["tension_mean"] = (("case", "line"), np.full((60, 3), 1e6 * (k + 1)))
+        write_zarr(s, tmp_path / f"{ms}_sims.zarr")
+        d = xr.Dataset({v: (("bin", "line"), np.full((2, 3), 1e-6 / 10 ** (2 * k))) for v in ("damage_sn", "damage_tn")},
+                       coords={"bin": [0, 1], "line": LINES})
+        write_zarr(d, tmp_path / f"{ms}_disc.zarr")
+        iol.lifecycle_store(tmp_path / "hindcast.zarr", tmp_path / "cases.zarr", tmp_path / f"{ms}_sims.zarr",
+                            tmp_path / f"{ms}_lc.zarr", lifecycle_cfg=cfg, fatigue_cfg={}, threads=1)
+    lc = open_zarr(tmp_path / "MS1_lc.zarr")
+    assert lc["damage_sn"].dims == ("time", "line") and lc.sizes["time"] == 1500
+    np.testing.assert_allclose(lc["lifecycle_damage"].sel(curve="sn").values, np.array([2e-6, 5e-6, 1e-6]) * 1500)
+    iol.lifecycle_figures(tmp_path / "MS1_lc.zarr", {k: tmp_path / f"{k}.png" for k in ("validation", "loo_map",
+                                                                                       "damage_metocean")},
+                          mooring_system="MS1")
+    lcs = [tmp_path / f"{ms}_lc.zarr" for ms in systems]
+    table = iol.compare_outputs(lcs, [tmp_path / f"{ms}_disc.zarr" for ms in systems], tmp_path / "bins.zarr",
+                                tmp_path / "ms.tsv", tmp_path / "summary.csv", tmp_path / "rec.yaml",
+                                systems=systems, lifecycle_cfg=cfg)
+    csv = pd.read_csv(tmp_path / "summary.csv")
+    assert len(csv) == len(table) == 12
+    # MS1 damages 2e-6..5e-6 per hour -> ~0.04 per year x 25 y x DFF fails; MS2 is 100x lower and passes
+    rec = yaml.safe_load((tmp_path / "rec.yaml").read_text())
+    assert rec["recommended"] == "MS2"
+    r = csv[(csv.mooring_system == "MS1") & (csv.line == "M2") & (csv.curve == "sn")].iloc[0]
+    assert r.difference_pct == pytest.approx(100 * (5e-6 - 1e-6) / 5e-6)
+    iol.compare_figures(tmp_path / "summary.csv", tmp_path / "rec.yaml", lcs,
+                        {k: tmp_path / f"{k}.png" for k in ("damage_mass", "difference", "offsets", "recommendation")},
+                        systems=systems)
+    seeds = xr.Dataset({v: (("case", "line"), np.full((4, 3), 1e-5) * np.array([[1], [1.1], [0.9], [1.2]]))
+                        for v in ("damage_sn", "damage_tn")}, coords={"case": np.arange(4) + 10**6, "line": LINES})
+    write_zarr(seeds, tmp_path / "seeds.zarr")
+    outs = {k: tmp_path / "sens" / f"{k}.{'csv' if k.endswith('csv') else 'png'}" for k in
+            ("seeds_csv", "seeds_fig", "corrosion_csv", "corrosion_fig", "mean_stress_csv", "mean_stress_fig")}
+    iol.sensitivity_outputs(tmp_path / "seeds.zarr", lcs[1], lcs, tmp_path / "ms.tsv", outs, systems=systems,
+                            mooring_system="MS2", corrosion_line="M1", fatigue_cfg={})
+    lives = pd.read_csv(outs["seeds_csv"])
+    assert lives[(lives.curve == "sn") & (lives.line == "M1")]["life_years"].max() == pytest.approx(1 / (0.9e-5 * 8766), rel=1e-5)
+    ms_tab = pd.read_csv(outs["mean_stress_csv"])
+    assert ms_tab[(ms_tab.block == "lifecycle mean") & (ms_tab.mooring_system == "MS2")]["mean_tension_kN"].iloc[0] \
+        == pytest.approx(2000.0)
+    for p in [*outs.values(), *(tmp_path / f"{k}.png" for k in ("validation", "damage_mass", "recommendation"))]:
+        assert p.stat().st_size > 1000, p

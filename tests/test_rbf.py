@@ -93,6 +93,21 @@ def test_rippa_closed_form_equals_brute_force_leave_one_out():
         np.testing.assert_allclose(model.loo_error[k], e, rtol=1e-6, atol=1e-10)
 
 
+def test_kernel_block_inverse_equals_the_full_inverse():
+    x = _sea_states(80, seed=20)
+    space = rbf.fit_space(x, DIRS5)
+    z = rbf.normalise(x, space)
+    d2 = rbf.squared_distances(z, z, DIRS5)
+    basis = rbf.polynomial_basis(z, DIRS5)
+    mat = rbf.augmented_matrix(d2, basis, 0.3)
+    h, rcond = rbf.kernel_block_inverse(mat[:80, :80], basis)
+    full = np.linalg.inv(mat)[:80, :80]
+    np.testing.assert_allclose(h, full, rtol=1e-7, atol=1e-9 * np.abs(full).max())
+    assert 0 < rcond < 1
+    bad, rc = rbf.kernel_block_inverse(np.ones((80, 80)), basis)  # rank one: not positive definite
+    assert bad is None and rc == 0.0
+
+
 def test_rippa_picks_the_grid_minimum_and_sharing_reduces_distinct_shapes():
     x = _sea_states(150, seed=10)
     y = np.column_stack([np.sin(x[:, 2]) + x[:, 3] / 10 + 0.01 * k for k in range(4)] + [x[:, 0] ** 2 / 900])

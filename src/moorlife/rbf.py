@@ -51,6 +51,7 @@ __all__ = [
     "polynomial_basis",
     "augmented_matrix",
     "solve_weights",
+    "kernel_block_inverse",
     "rippa_errors",
     "loo_curve",
     "choose_shapes",
@@ -135,7 +136,7 @@ class LOOCurve:
         Root-mean-square leave-one-out error per candidate and output (``inf`` where the
         system is too ill-conditioned, see ``MIN_RCOND``).
     rcond : numpy.ndarray, shape (g,)
-        Reciprocal condition number estimate of the augmented matrix.
+        Reciprocal condition number estimate of the kernel matrix (0: not positive definite).
     """
 
     shapes: np.ndarray
@@ -443,6 +444,44 @@ def _inverse(matrix: np.ndarray) -> tuple[np.ndarray, float]:
     return inv, float(rcond) if np.isfinite(rcond) else 0.0
 
 
+def kernel_block_inverse(kernel: np.ndarray, basis: np.ndarray) -> tuple[np.ndarray | None, float]:
+    """The kernel block ``(M^{-1})_{11}`` of the inverse augmented matrix, via Cholesky.
+
+    ``H = K^-1 - K^-1 P (P^T K^-1 P)^-1 P^T K^-1`` (Schur complement): one Cholesky
+    factorisation and one triangular inverse, about half the work of inverting ``M``. A
+    Gaussian kernel matrix is positive definite in exact arithmetic, so a failed Cholesky
+    flags a numerically singular system.
+
+    Parameters
+    ----------
+    kernel : numpy.ndarray, shape (m, m)
+        ``K`` (plus any smoothing on the diagonal), symmetric.
+    basis : numpy.ndarray, shape (m, p)
+
+    Returns
+    -------
+    H : numpy.ndarray, shape (m, m), or None
+        None when ``K`` is not numerically positive definite.
+    rcond : float
+        LAPACK estimate of the reciprocal 1-norm condition number of ``K`` (0 when singular).
+    """
+    chol, info = sla.lapack.dpotrf(kernel, lower=0, clean=1)
+    if info != 0:
+        return None, 0.0
+    rcond, _ = sla.lapack.dpocon(chol, np.linalg.norm(kernel, 1))
+    kinv, info = sla.lapack.dpotri(chol, lower=0)
+    if info != 0:
+        return None, 0.0
+    kinv = np.triu(kinv) + np.triu(kinv, 1).T
+    kp = kinv @ basis
+    try:
+        s = np.linalg.solve(basis.T @ kp, kp.T)
+    except np.linalg.LinAlgError:
+        return None, 0.0
+    kinv -= kp @ s
+    return kinv, float(rcond)
+
+
 def rippa_errors(inverse: np.ndarray, values: np.ndarray) -> np.ndarray:
     """Leave-one-out residuals in Rippa's closed form.
 
@@ -452,8 +491,8 @@ def rippa_errors(inverse: np.ndarray, values: np.ndarray) -> np.ndarray:
 
     Parameters
     ----------
-    inverse : numpy.ndarray, shape (m + p, m + p)
-        Inverse of the augmented matrix.
+    inverse : numpy.ndarray, shape (m + p, m + p) or (m, m)
+        Inverse of the augmented matrix, or its kernel block (:func:`kernel_block_inverse`).
     values : numpy.ndarray, shape (m, n_out)
 
     Returns
@@ -500,13 +539,14 @@ def loo_curve(
     q = np.asarray(shapes, dtype=float)
     rms = np.full((q.size, values.shape[1]), np.inf)
     rcond = np.zeros(q.size)
+    m = d2.shape[0]
     for i, qi in enumerate(q):
-        try:
-            inv, rc = _inverse(augmented_matrix(d2, basis, qi, smoothing))
-        except (np.linalg.LinAlgError, ValueError):
-            continue
+        k = gaussian(d2, qi)
+        if smoothing:
+            k[np.arange(m), np.arange(m)] += smoothing
+        inv, rc = kernel_block_inverse(k, basis)
         rcond[i] = rc
-        if rc < MIN_RCOND:
+        if inv is None or rc < MIN_RCOND:
             continue
         e = rippa_errors(inv, values)
         rms[i] = np.sqrt(np.mean(e * e, axis=0))
@@ -640,17 +680,20 @@ def fit_rbf(
         q = np.broadcast_to(np.asarray(shape, dtype=float), (n_out,)).copy()
         if np.any(~(q > 0)):
             raise ValueError(f"shape parameters must be positive, got {q}")
+    m = z.shape[0]
     weights = np.empty_like(y)
     poly = np.empty((basis.shape[1], n_out))
     loo = np.empty_like(y)
     for qi in np.unique(q):
         cols = np.flatnonzero(q == qi)
         mat = augmented_matrix(d2, basis, float(qi), smoothing)
-        inv, _ = _inverse(mat)
         w, c = solve_weights(mat, y[:, cols])
         weights[:, cols] = w
         poly[:, cols] = c
-        loo[:, cols] = rippa_errors(inv, y[:, cols])
+        h, _ = kernel_block_inverse(mat[:m, :m], basis)
+        if h is None:  # not numerically positive definite: fall back on the full inverse
+            h, _ = _inverse(mat)
+        loo[:, cols] = rippa_errors(h, y[:, cols])
     return RBFModel(
         space=space,
         centres=z,
