@@ -9,11 +9,10 @@ Runs, in one process on the same machine:
   its OC4 r-test step dtM = 1 ms) under a prescribed fairlead motion (5 m surge at 100 s plus
   1 m at 10 s): the cost of the mooring alone, without any platform.
 
-The platform is the BEM model of ``results/hydro/platform.nc`` when it and ``moorlife.hydro``
-exist, else an OC4-sized synthetic stand-in with the same number of Morison strips (the cost
-does not depend on the coefficients' values). Usage::
+The platform is the BEM model of ``--wamit PREFIX`` or ``results/hydro/platform.nc`` when it
+exists, else an OC4-sized synthetic stand-in with the same number of Morison strips. Usage::
 
-    .venv/bin/python benchmarks/bench_simulate.py [--record 600] [--moordyn-seconds 60]
+    .venv/bin/python benchmarks/bench_simulate.py [--record 600] [--moordyn-seconds 60] [--wamit PREFIX]
 """
 
 from __future__ import annotations
@@ -28,7 +27,8 @@ from pathlib import Path
 import numpy as np
 
 from moorlife import simulate as sim
-from moorlife.io import read_mooring_systems, read_yaml
+from moorlife.io import read_mooring_systems
+from moorlife.io.platform import read_platform_config
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -63,8 +63,14 @@ def synthetic_platform(platform_cfg: dict) -> sim.ModelInputs:
     )
 
 
-def platform_model(platform_cfg: dict, row: dict, kind: str) -> tuple[sim.ModelInputs, str]:
+def platform_model(platform_cfg: dict, row: dict, kind: str, wamit: str | None = None) -> tuple[sim.ModelInputs, str]:
     nc = ROOT / "results/hydro/platform.nc"
+    if wamit:
+        from moorlife import hydro
+        from moorlife.io.wamit import read_wamit_dataset
+
+        pm = hydro.load_platform_model(read_wamit_dataset(wamit), platform_cfg)
+        return sim.attach_mooring(sim.platform_from(pm, platform_cfg, {}), row, {"model": kind}), f"WAMIT {Path(wamit).name}"
     try:
         from moorlife.io.platform import open_platform_nc
 
@@ -168,15 +174,16 @@ def main() -> None:
     ap.add_argument("--record", type=float, default=600.0, help="simulated seconds per timing (scaled to 1 h)")
     ap.add_argument("--moordyn-seconds", type=float, default=60.0, help="simulated seconds of MoorDyn")
     ap.add_argument("--batch", type=int, default=8)
+    ap.add_argument("--wamit", default=None, help="WAMIT prefix for the platform (else results/hydro/platform.nc)")
     args = ap.parse_args()
-    platform_cfg = read_yaml(ROOT / "config/platform.yaml")
+    platform_cfg = read_platform_config(ROOT / "config/platform.yaml")
     table = read_mooring_systems(ROOT / "config/mooring_systems.tsv")
     row = {k: (v.item() if hasattr(v, "item") else v) for k, v in table.loc["MS2"].items()}
     row["mooring_system"] = "MS2"
     print(f"record {args.record:.0f} s per timing, dt 0.1 s, MS2 lines, CPU s per simulated hour per sea state")
     ours = {}
     for kind in ("quasistatic", "dynamic"):
-        model, source = platform_model(platform_cfg, row, kind)
+        model, source = platform_model(platform_cfg, row, kind, args.wamit)
         for b in (1, args.batch):
             ours[kind, b] = time_ours(model, b, args.record)
             print(f"moorlife {kind:<12s} batch {b:2d}: {ours[kind, b]:7.3f} CPU-s/h   ({source})")

@@ -653,21 +653,7 @@ def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, 
             fmoor6[b, d] += static[d]
     nlag = ker.shape[0]
     if nlag > 0:
-        npair = ker.shape[1]
-        jj = j % nlag
-        kmax = min(j + 1, nlag)
-        for b in range(nb):
-            for d in range(6):
-                hist[b, jj, d] = v[b, d]
-            for p in range(npair):
-                acc_p = 0.0
-                for k in range(kmax):
-                    w = 0.5 if (k == 0 or k == nlag - 1) else 1.0
-                    idx = jj - k
-                    if idx < 0:
-                        idx += nlag
-                    acc_p += w * ker[k, p] * hist[b, idx, kpj[p]]
-                fmoor6[b, kpi[p]] -= dt * acc_p
+        _convolve(j, v, hist, ker, kpi, kpj, fmoor6)
     if i >= 0:
         for b in range(nb):
             for d in range(6):
@@ -680,6 +666,32 @@ def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, 
             accel[b, 0, i] = acc[b, 0] + acc[b, 4] * hz - acc[b, 5] * hy
             accel[b, 1, i] = acc[b, 1] + acc[b, 5] * hx - acc[b, 3] * hz
             accel[b, 2, i] = acc[b, 2] + acc[b, 3] * hy - acc[b, 4] * hx
+
+
+@numba.njit(cache=True)
+def _convolve(j, v, hist, ker, kpi, kpj, out):  # pragma: no cover - numba
+    """Subtract the radiation convolution ``sum_k ker[k] v(t_j - k dt)`` from ``out (B, 6)``.
+
+    ``ker (nlag, npairs)`` already holds the trapezoid weights and ``dt``; ``hist (B, nlag, 6)``
+    is the circular velocity history, into which ``v`` is stored first.
+    """
+    nlag, npair = ker.shape
+    jj = j % nlag
+    kmax = min(j + 1, nlag)
+    acc = np.empty(npair)
+    for b in range(v.shape[0]):
+        for d in range(6):
+            hist[b, jj, d] = v[b, d]
+        for p in range(npair):
+            acc[p] = 0.0
+        for k in range(kmax):
+            idx = jj - k
+            if idx < 0:
+                idx += nlag
+            for p in range(npair):
+                acc[p] += ker[k, p] * hist[b, idx, kpj[p]]
+        for p in range(npair):
+            out[b, kpi[p]] -= acc[p]
 
 
 @numba.njit(cache=True)
@@ -750,7 +762,9 @@ def _kernel_at(model: ModelInputs, dt: float) -> tuple[np.ndarray, np.ndarray, n
     t_src = np.arange(model.kernel.shape[0]) * model.kernel_dt
     t = np.arange(0.0, t_src[-1] + 1e-9, dt)
     ker = np.stack([np.interp(t, t_src, model.kernel[:, p]) for p in range(model.kernel.shape[1])], axis=1)
-    return np.ascontiguousarray(ker), model.kernel_pairs[:, 0].copy(), model.kernel_pairs[:, 1].copy()
+    w = np.full(t.size, dt)  # trapezoid weights folded in
+    w[[0, -1]] *= 0.5
+    return np.ascontiguousarray(ker * w[:, None]), model.kernel_pairs[:, 0].copy(), model.kernel_pairs[:, 1].copy()
 
 
 @dataclass(frozen=True)
