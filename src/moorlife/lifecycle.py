@@ -103,7 +103,7 @@ class RBFSettings:
     grid_max: float = 1.0
     grid_n: int = 18
     share_tol: float = 0.02
-    log_damage: bool = False
+    log_damage: bool = True
     smoothing: float = 0.0
     chunk_rows: int = 8192
     outputs: tuple[str, ...] = DEFAULT_OUTPUTS + ("tension_mean", "surge_mean", "sway_mean")
