@@ -99,6 +99,10 @@ def test_read_platform_config_checks_blocks(tmp_path, platform_cfg):
     p.write_text(yaml.safe_dump(bad))
     with pytest.raises(ValueError, match=r"pf\.yaml: rna\.inertia_cm is missing"):
         read_platform_config(p)
+    bad["rna"] = {**platform_cfg["rna"], "mass": "3.5e5"}  # PyYAML reads 3.5e5 as a string
+    p.write_text(yaml.safe_dump(bad))
+    with pytest.raises(ValueError, match=r"pf\.yaml: rna\.mass\[0\] = '3\.5e5' is not a number"):
+        read_platform_config(p)
 
 
 # ------------------------------------------------------------ rigid body, statics
@@ -319,3 +323,41 @@ def test_excitation_at_symmetry(model):
     assert np.max(np.abs(x0[:, 1])) < 0.02 * np.max(np.abs(x0[:, 0]))
     xm = hydro.excitation_at(model, 0.5 * (model.headings[1] + model.headings[2]))
     np.testing.assert_allclose(xm, 0.5 * (model.excitation[:, 1] + model.excitation[:, 2]))
+
+
+# --------------------------------------------------------------- the hydro rule's params
+
+def test_bem_settings_change_only_with_bem_inputs(platform_cfg):
+    from moorlife.io import read_study_config
+
+    cfg = read_study_config(ROOT / "config/config.yaml", schema=ROOT / "workflow/schemas/config.schema.yaml")
+    base = hydro.bem_settings(cfg["hydro"], platform_cfg)
+    other_ct = {**platform_cfg, "turbine": {**platform_cfg["turbine"], "ct_table": {"wind_speed": [3, 25], "ct": [1, 0.1]}}}
+    assert hydro.bem_settings(cfg["hydro"], other_ct) == base  # the Ct table does not rerun the BEM
+    members = [dict(m) for m in platform_cfg["members"]]
+    members[0]["diameter"] = 7.0
+    assert hydro.bem_settings(cfg["hydro"], {**platform_cfg, "members": members}) != base
+    coarse = {**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "resolution": "coarse"}}
+    assert hydro.bem_settings(coarse, platform_cfg)["panel_size"] == 6.0
+    with pytest.raises(ValueError, match="hydro.mesh.resolution = 'medium'"):
+        hydro.bem_settings({**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "resolution": "medium"}}, platform_cfg)
+
+
+@pytest.mark.slow
+def test_coarse_bem_reproduces_fixture(platform_cfg):
+    """The coarse setting reruns in seconds and reproduces the committed fixture at the shared
+    grid points (0.05 and 2.5 rad/s; headings 0 and 180 deg): determinism + fixture freshness.
+    (Threaded LAPACK in the BEM solve leaves ~1e-4 relative noise on the smallest terms.)"""
+    from moorlife.io import read_study_config
+
+    cfg = read_study_config(ROOT / "config/config.yaml", (ROOT / "config/quick.yaml",),
+                            schema=ROOT / "workflow/schemas/config.schema.yaml")
+    s = hydro.bem_settings(cfg["hydro"], platform_cfg)
+    s["omega"] = {"min": 0.05, "max": 2.5, "n": 2}
+    s["heading_step"] = 180.0
+    ds = hydro.bem_from_settings(s, n_threads=1)
+    ref = open_platform_nc(FIXTURE).sel(omega=ds["omega"].values, heading=ds["heading"].values, method="nearest")
+    for v in ("added_mass", "damping", "excitation", "drift"):
+        np.testing.assert_allclose(ds[v].values, ref[v].values, rtol=1e-3, atol=1e-4 * float(np.max(np.abs(ref[v].values))))
+    np.testing.assert_allclose(ds["added_mass_inf"].values, ref["added_mass_inf"].values, rtol=1e-3,
+                               atol=1e-4 * float(np.max(np.abs(ref["added_mass_inf"].values))))

@@ -2,8 +2,10 @@
 # params hold exactly what changes the result (geometry, environment, mass properties and
 # linear mooring stiffness behind the drift motions, grid, headings, mesh): platform.yaml is
 # read here, at parse time, so editing e.g. the Ct table does not rerun the BEM.
+# Fine mesh (2 m panels, 3-fold symmetry, 50 frequencies x 24 headings): about 25 min on
+# 2 cores; the coarse setting (hydro.mesh.resolution: coarse, config/quick.yaml) about 1 min.
 from moorlife.hydro import bem_settings
-from moorlife.io import read_yaml
+from moorlife.io.platform import read_platform_config
 
 
 def _hydro_inputs(wildcards):
@@ -22,8 +24,12 @@ rule hydro:
     output:
         "results/hydro/platform.nc",
     params:
-        bem=bem_settings(config["hydro"], read_yaml(config["platform"])),
+        bem=bem_settings(config["hydro"], read_platform_config(config["platform"])),
     threads: 2
+    resources:
+        mem_mb=2000,
+    conda:
+        "../../envs/moorlife.yaml"
     log:
         "logs/hydro/platform.log",
     script:

@@ -29,6 +29,16 @@ _REQUIRED = {
 }
 
 
+_NUMERIC = {
+    "environment": ("rho_water", "gravity", "water_depth", "rho_air"),
+    "platform": ("mass", "cm", "inertia_cm"),
+    "tower": ("mass", "cm", "inertia_cm"),
+    "rna": ("mass", "cm", "inertia_cm"),
+    "turbine": ("rotor_radius", "hub_height", "cut_in", "cut_out", "shutdown_ramp", "startup_ramp"),
+    "": ("mooring_stiffness_diag", "morison_strip_length"),
+}
+
+
 def read_platform_config(path: str | os.PathLike[str]) -> dict:
     """Read ``platform.yaml`` and check its blocks; errors name the file and the key.
 
@@ -48,6 +58,17 @@ def read_platform_config(path: str | os.PathLike[str]) -> dict:
         for k in keys:
             if k not in cfg[block]:
                 raise ValueError(f"{p}: {block}.{k} is missing")
+    for block, keys in _NUMERIC.items():
+        for k in keys:
+            v = cfg[block].get(k) if block else cfg.get(k)
+            if v is None:
+                continue
+            vals = np.ravel(np.asarray(v, dtype=object))
+            for n, x in enumerate(vals):
+                if isinstance(x, bool) or not isinstance(x, (int, float)):
+                    where = f"{block}.{k}" if block else k
+                    raise ValueError(f"{p}: {where}[{n}] = {x!r} is not a number "
+                                     "(YAML needs a sign in the exponent: write 1.5e+7, not 1.5e7)")
     members_from_config(cfg, str(p))
     ct_table(cfg["turbine"], str(p))
     return cfg
