@@ -361,3 +361,20 @@ def test_coarse_bem_reproduces_fixture(platform_cfg):
         np.testing.assert_allclose(ds[v].values, ref[v].values, rtol=1e-3, atol=1e-4 * float(np.max(np.abs(ref[v].values))))
     np.testing.assert_allclose(ds["added_mass_inf"].values, ref["added_mass_inf"].values, rtol=1e-3,
                                atol=1e-4 * float(np.max(np.abs(ref["added_mass_inf"].values))))
+
+
+def test_richardson_recovers_linear_limit():
+    w = np.array([0.5, 1.0])
+    fine = hydro.platform_dataset(w, np.array([0.0]), np.full((2, 6, 6), 12.0), np.full((6, 6), 2.0),
+                                  np.full((2, 6, 6), 5.0), np.full((2, 1, 6), 3.0 + 1.0j), np.eye(6), np.ones((2, 1, 6)),
+                                  water_depth=200.0, rho=1025.0, g=9.81, attrs={"panel_size": 2.0})
+    coarse = fine.copy(deep=True)
+    for v, d in (("added_mass", 2.0), ("added_mass_inf", 1.0), ("damping", -1.0), ("excitation", 0.5 - 0.5j), ("drift", 0.25)):
+        coarse[v] = fine[v] + d  # error doubles with the panel size: F(2h) - F(h) = c h = d
+    out = hydro.richardson(fine, coarse, 2.0)
+    np.testing.assert_allclose(out["added_mass"].values, 10.0)
+    np.testing.assert_allclose(out["added_mass_inf"].values, 1.0)
+    np.testing.assert_allclose(out["damping"].values, 6.0)
+    np.testing.assert_allclose(out["excitation"].values, 2.5 + 1.5j)
+    np.testing.assert_allclose(out["drift"].values, 0.75)
+    np.testing.assert_array_equal(out["hydrostatic_stiffness"].values, np.eye(6))

@@ -208,8 +208,10 @@ def _drift_on_grid(omega, headings, d_omega, d_heads, D) -> np.ndarray:
 
 
 def read_wamit_dataset(prefix: str | os.PathLike[str], *, rho: float = 1025.0, g: float = 9.80665,
-                       ulen: float = 1.0) -> xr.Dataset:
+                       ulen: float = 1.0, water_depth: float = float("nan")) -> xr.Dataset:
     """Read ``<prefix>.1``, ``.3``, ``.hst`` (and ``.12d`` if present) as a ``platform.nc`` dataset.
+
+    WAMIT files do not record the water depth: pass the one of the run (``water_depth``, m).
 
     The ``.1`` and ``.3`` frequency grids must agree; ``A_inf`` must be in the ``.1``
     (``PER = -1`` rows).
@@ -233,4 +235,4 @@ def read_wamit_dataset(prefix: str | os.PathLike[str], *, rho: float = 1025.0, g
     attrs = {"source": src, "ulen": float(ulen),
              "drift_method": "WAMIT .12d diagonal (mean drift)" if drift is not None else "none"}
     return platform_dataset(w1, heads, A, a_inf, B, X, C, drift if drift is not None else np.zeros(X.shape),
-                            water_depth=float("nan"), rho=rho, g=g, attrs=attrs)
+                            water_depth=float(water_depth), rho=rho, g=g, attrs=attrs)
