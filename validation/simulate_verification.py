@@ -59,9 +59,13 @@ def period(x: np.ndarray, dt: float, cycles: int = 3) -> float:
 
 
 def decay(model: sim.ModelInputs, no_drag: sim.ModelInputs) -> list[str]:
-    out = ["| DOF | initial | period, linear OC4 stiffness (s) | period, MS2 catenary, no drag (s) | period, MS2 catenary + drag (s) | OC4 (s) | error (catenary + drag) |",
-           "|---|---|---|---|---|---|---|"]
-    lin = sim.linear_natural_periods(dataclasses.replace(model, mooring_kind="linear"))
+    out = ["| DOF | initial | uncoupled estimate (s) | coupled eigen, linear OC4 stiffness (s) | decay, MS2 catenary, no drag (s) | decay, MS2 catenary + drag (s) | OC4 (s) | error (catenary + drag) |",
+           "|---|---|---|---|---|---|---|---|"]
+    lin_model = dataclasses.replace(model, mooring_kind="linear")
+    lin = sim.linear_natural_periods(lin_model)
+    k = lin_model.stiffness + lin_model.mooring_stiffness
+    unc = [2 * math.pi * math.sqrt((lin_model.mass[d, d] - sim.radiation_impedance(lin_model, [2 * math.pi / lin[d]])[0, d, d].imag
+                                    / (2 * math.pi / lin[d])) / k[d, d]) for d in range(6)]
     init = {"surge": (0, 8.0, "8 m"), "heave": (2, 1.5, "1.5 m"), "pitch": (4, math.radians(2.0), "2 deg")}
     for name, (d, x0, label) in init.items():
         grid = env.record_grid(8 * OC4_PERIODS[name], 0.0, 0.1)
@@ -72,7 +76,7 @@ def decay(model: sim.ModelInputs, no_drag: sim.ModelInputs) -> list[str]:
             rec = sim.integrate(m, quiet(m, grid), transient=0.0, q0=q0)
             res.append(period(rec.motion[0, d], grid.dt))
         err = res[1] / OC4_PERIODS[name] - 1
-        out.append(f"| {name} | {label} | {lin[d]:.2f} | {res[0]:.2f} | {res[1]:.2f} | {OC4_PERIODS[name]} | {100 * err:+.1f} % |")
+        out.append(f"| {name} | {label} | {unc[d]:.2f} | {lin[d]:.2f} | {res[0]:.2f} | {res[1]:.2f} | {OC4_PERIODS[name]} | {100 * err:+.1f} % |")
     return out
 
 

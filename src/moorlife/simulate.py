@@ -953,21 +953,29 @@ def frequency_response(
 
 
 def linear_natural_periods(model: ModelInputs, mooring_stiffness: np.ndarray | None = None) -> np.ndarray:
-    """Undamped natural periods (s) per DOF from ``M + A_inf + a(omega_n)`` and ``K + K_m``.
+    """Natural periods (s) of the coupled linear system, one per DOF.
 
-    Each diagonal entry is iterated on its own frequency (the added mass of the state space at
-    ``omega_n``), as in a decay test. Returns ``(6,)`` (``inf`` for a DOF without restoring).
+    For each DOF the search starts at its uncoupled estimate ``2 pi sqrt((M + a)_dd / K_dd)``
+    and iterates the generalised eigenproblem ``(K + K_m) x = w^2 (M + A_inf + a(w)) x`` with
+    the frequency-dependent added mass of the model's own radiation memory, following the
+    eigenvalue nearest the current frequency (so surge-pitch and sway-roll coupling through the
+    mass matrix is included, as in a decay test). Returns ``(6,)``, ``inf`` without restoring.
     """
     km = model.mooring_stiffness if mooring_stiffness is None else np.asarray(mooring_stiffness)
-    kk = np.diag(model.stiffness + km)
+    kk = model.stiffness + km
     out = np.full(6, np.inf)
     for d in range(6):
-        if kk[d] <= 0:
+        if kk[d, d] <= 0:
             continue
-        w = math.sqrt(kk[d] / model.mass[d, d])
-        for _ in range(30):
-            a = -radiation_impedance(model, np.array([w]))[0, d, d].imag / w
-            w = math.sqrt(kk[d] / (model.mass[d, d] + a))
+        w = math.sqrt(kk[d, d] / model.mass[d, d])
+        for _ in range(40):
+            a = model.mass - radiation_impedance(model, np.array([w]))[0].imag / w
+            ev = scipy.linalg.eigvals(kk, a)
+            ws = np.sqrt(np.abs(ev.real))
+            w_new = float(ws[np.argmin(np.abs(ws - w))])
+            if abs(w_new - w) < 1e-10 * w:
+                break
+            w = w_new
         out[d] = 2 * math.pi / w
     return out
 
