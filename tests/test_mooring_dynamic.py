@@ -198,9 +198,21 @@ def test_time_step_convergence():
         return _run_ours(props, {"mooring": {"relaxation_time": 5.0, "max_time_step": h}}, t)[200:, 0, 1]
 
     ref = run(0.00625)
-    err = {h: np.max(np.abs(run(h) - ref)) / np.ptp(ref) for h in (0.1, 0.05, 0.025)}
-    assert err[0.1] < 0.03 and err[0.05] < 0.03
-    assert err[0.025] < err[0.1]
+    # rms error relative to the standard deviation; seabed touchdown transients make the
+    # pointwise maximum error non-monotonic, the rms converges
+    err = {h: np.sqrt(np.mean((run(h) - ref) ** 2)) / np.std(ref) for h in (0.1, 0.05, 0.0125)}
+    assert err[0.1] < 0.05 and err[0.05] < 0.02 and err[0.0125] < 0.005
+    assert err[0.0125] < err[0.05] < err[0.1]
+
+
+def test_ros2_and_bdf2_agree():
+    props = lines.line_properties(MS2)
+    t = np.arange(0.0, 80.0 + 1e-9, 0.1)
+    a = _run_ours(props, {"mooring": {"relaxation_time": 5.0, "integrator": "bdf2"}}, t)[300:, 0, :]
+    b = _run_ours(props, {"mooring": {"relaxation_time": 5.0, "integrator": "ros2"}}, t)[300:, 0, :]
+    np.testing.assert_allclose(a.std(axis=0), b.std(axis=0), rtol=0.01)
+    np.testing.assert_allclose(np.ptp(a, axis=0), np.ptp(b, axis=0), rtol=0.02)
+    assert not np.array_equal(a, b)
 
 
 # ------------------------------------------------------------------ peer: MoorDyn
@@ -214,7 +226,7 @@ def test_fairlead_tension_statistics_match_moordyn(tmp_path, row, friction):
     # velocity for a node resting with its own wet weight
     fric_damp = props.wet_weight * LAYOUT.length / settings.n_segments / settings.friction_slip_velocity
     deck = _moordyn_deck(tmp_path / "moordyn.dat", props, settings, 0.001, fric_damp if friction else 200.0)
-    t = np.arange(0.0, 250.0 + 1e-9, 0.05)
+    t = np.arange(0.0, 250.0 + 1e-9, 0.1)  # the simulator's step; default mooring.max_time_step
     ours = _run_ours(props, cfg, t)[:, 0, :]
     ref = _run_moordyn(deck, t)
     keep = t >= 50.0

@@ -15,18 +15,32 @@ velocity (Coulomb friction regularised below ``v_slip``).
 Integrator and why. The chain is axially very stiff: the highest axial mode of a 42 m
 segment of MS2 chain has ``omega = 2 c / l0 ~ 120 rad/s`` (``c = sqrt(EA/m) ~ 2400 m/s``)
 and the seabed spring-damper adds ``cb D l / m ~ 300 1/s``. An explicit scheme (MoorDyn's
-RK2) must resolve those with ``dt ~ 1-5 ms``, although the response that matters (waves,
-slow drift) lives below ~2 rad/s. We integrate the stiff ODE with the two-stage,
-second-order, L-stable linearly implicit Rosenbrock method ROS2 (Verwer et al. 1999,
-``gamma = 1 + 1/sqrt(2)``): each step solves two linear systems with the same matrix
-``M - gamma h C - gamma^2 h^2 K`` (mass, damping and stiffness Jacobians of the node
-forces), which for a line is block tridiagonal (3x3 blocks) and is factorised once per step
-by block Thomas elimination (O(N)). No Newton iteration is needed; ROS2 keeps order 2 with
-an approximate Jacobian (W-method), so the drag and friction Jacobians may be crude. The
-unresolved axial modes are damped out (L-stability) instead of limiting the step, so the
-step is set by accuracy only: ``max_time_step`` (default 0.05 s, ~100 steps per 5 s wave
-period). Validation against MoorDyn: ``tests/test_mooring_dynamic.py``; cost:
-``benchmarks/bench_mooring.py``.
+RK2) must resolve those with ``dt ~ 1-5 ms`` (MoorDyn diverges at 10 ms on MS2), although
+the response that matters (waves, slow drift) lives below ~2 rad/s. We integrate the stiff
+ODE implicitly, linearising the node forces once per step (no Newton loop): the matrix
+``M - b C - b^2 K`` (mass, damping and stiffness Jacobians of the node forces) is block
+tridiagonal (3x3 blocks) for a line and is factorised by block Thomas elimination in O(N).
+Two L-stable second-order schemes are available (``mooring.integrator``):
+
+* ``bdf2`` (default): linearly implicit BDF2, forces linearised about the extrapolated state
+  ``2 y_n - y_n-1``; one force evaluation, one factorisation and one solve per step. It is
+  started (and restarted when the step length changes) by one ROS2 step.
+* ``ros2``: the two-stage Rosenbrock method of Verwer et al. (1999), ``gamma = 1 + 1/sqrt 2``;
+  two force evaluations and two solves with one factorisation; order 2 with an approximate
+  Jacobian (W-method).
+
+The unresolved axial modes are damped out (L-stability) instead of limiting the step, so the
+step is set by accuracy only: ``max_time_step`` (default 0.05 s, 100 steps per 5 s wave
+period). A stiff term left out of the matrix acts explicitly, so the seabed spring-damper
+enters the matrix for nodes in contact or about to land within the step (else landing nodes
+bounce), and only for those (a spring in the matrix of a node in free flight slows it down,
+measured). Before the dynamics, the nodes are put in static equilibrium by Newton iterations
+(same block-tridiagonal solver) starting from the elastic catenary, then relaxed with the
+fairleads held still.
+
+Validation against MoorDyn (``tests/test_mooring_dynamic.py``, MS2 with friction and MS5
+without, 5 m surge at 100 s + 1 m at 10 s): mean, standard deviation and range of fairlead
+tension within 3 % at 0.05 s. Cost: ``benchmarks/bench_mooring.py``, ``benchmarks/mooring.md``.
 
 The fairlead force returned to the platform is the net force of the line's end node
 (minus its inertia), as MoorDyn's coupled-point force: ``-(T + c dl/dt) t_end`` plus the end
@@ -427,6 +441,55 @@ def _ros2_step(r, v, rf0, vf0, rf1, vf1, h, p, w):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
+def _bdf2_step(r, v, rp, vp, rf1, vf1, h, p, w):
+    """One linearly implicit BDF2 step of one line (constant step h; rp, vp the previous state).
+
+    ``x' = 4/3 x_n - 1/3 x_n-1 + 2/3 h v'`` and ``M (v' - 4/3 v_n + 1/3 v_n-1) = 2/3 h F(x', v')``
+    with F linearised once about the extrapolation ``(2 y_n - y_n-1)``; the fairlead is
+    at its prescribed position. One force evaluation, one factorisation, one solve.
+    On return (r, v) hold the new state and (rp, vp) the old one.
+    """
+    ws1, ws2, S, Winv, D, tmpm, rhs, kx1, kv1, kx2, kv2, r2, v2, tmp3 = w
+    F, segf, sq, sa, sg, tang, am, bm, C, Kz = ws1
+    N = int(p[_N])
+    beta = 2.0 * h / 3.0
+    for a in range(3):
+        r2[0, a] = r[0, a]
+        v2[0, a] = 0.0
+        r2[N, a] = rf1[a]
+        v2[N, a] = vf1[a]
+        kx2[0, a] = 0.0
+        kx2[N, a] = 0.0
+    for i in range(1, N):
+        for a in range(3):
+            r2[i, a] = 2.0 * r[i, a] - rp[i, a]  # predictor x*
+            v2[i, a] = 2.0 * v[i, a] - vp[i, a]  # predictor v*
+            kx1[i, a] = (4.0 * r[i, a] - rp[i, a]) / 3.0  # xb
+            kv1[i, a] = (4.0 * v[i, a] - vp[i, a]) / 3.0 - v2[i, a]  # vb - v*
+            kx2[i, a] = kx1[i, a] + beta * v2[i, a] - r2[i, a]  # xb + beta v* - x*
+    _node_forces(r2, v2, p, h, True, ws1)
+    _factor(ws1, S, Winv, D, tmpm, N, beta * p[_CINT], beta * beta, beta)
+    for i in range(1, N):
+        _kx_times(sq, sa, sg, Kz, kx2, i, tmp3)
+        tv = bm[i] * (tang[i, 0] * kv1[i, 0] + tang[i, 1] * kv1[i, 1] + tang[i, 2] * kv1[i, 2])
+        for a in range(3):
+            rhs[i, a] = am[i] * kv1[i, a] + tv * tang[i, a] + beta * (F[i, a] + tmp3[a])
+    _solve_blocks(S, Winv, rhs, kv2, N, tmp3)
+    for i in range(1, N):
+        for a in range(3):
+            vn = v2[i, a] + kv2[i, a]
+            rp[i, a] = r[i, a]
+            vp[i, a] = v[i, a]
+            v[i, a] = vn
+            r[i, a] = kx1[i, a] + beta * vn
+    for a in range(3):
+        rp[N, a] = r[N, a]
+        vp[N, a] = v[N, a]
+        r[N, a] = rf1[a]
+        v[N, a] = vf1[a]
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
 def _static_solve(r, p, w, iters, tol):
     """Newton iterations on the static node equilibrium of one line (fairlead and anchor fixed).
 
@@ -484,8 +547,12 @@ def _hermite(p0, v0, p1, v1, T, s, pos, vel):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
-def _step_batch(r, v, r_new, v_new, dt, nsub, p, buf, forces, tension):
-    """Advance every line of every batch member by dt (nsub ROS2 substeps)."""
+def _step_batch(r, v, rp, vp, hist, r_new, v_new, dt, nsub, scheme, p, buf, forces, tension):
+    """Advance every line of every batch member by dt (nsub substeps).
+
+    ``scheme`` 0: ROS2 every step; 1: BDF2 whenever the previous step had the same length
+    (``hist[b, k]``), ROS2 otherwise (first step, changed step).
+    """
     nb, nl = r.shape[0], r.shape[1]
     N = int(p[_N])
     w, vec = _views(buf, N)
@@ -502,7 +569,16 @@ def _step_batch(r, v, r_new, v_new, dt, nsub, p, buf, forces, tension):
                 v0[a] = vv[N, a]
             for j in range(nsub):
                 _hermite(p0, v0, r_new[b, k], v_new[b, k], dt, (j + 1) / nsub, fb, vb)
-                _ros2_step(rr, vv, fa, va, fb, vb, h, p, w)
+                if scheme == 1 and hist[b, k] == h:
+                    _bdf2_step(rr, vv, rp[b, k], vp[b, k], fb, vb, h, p, w)
+                else:
+                    if scheme == 1:
+                        for i in range(N + 1):
+                            for a in range(3):
+                                rp[b, k, i, a] = rr[i, a]
+                                vp[b, k, i, a] = vv[i, a]
+                    _ros2_step(rr, vv, fa, va, fb, vb, h, p, w)
+                    hist[b, k] = h
                 for a in range(3):
                     fa[a] = fb[a]
                     va[a] = vb[a]
@@ -649,12 +725,19 @@ class DynamicState:
         Force of each line on the platform at its fairlead, N (global frame).
     tension : numpy.ndarray, shape (B, L)
         Its magnitude, N.
+    r_prev, v_prev : numpy.ndarray, shape (B, L, N + 1, 3)
+        The previous step's node state (BDF2 history).
+    step_prev : numpy.ndarray, shape (B, L)
+        Length of the previous internal step, s (0: no history, the next step is ROS2).
     """
 
     r: np.ndarray
     v: np.ndarray
     forces: np.ndarray
     tension: np.ndarray
+    r_prev: np.ndarray
+    v_prev: np.ndarray
+    step_prev: np.ndarray
 
 
 class DynamicMooring:
@@ -669,6 +752,7 @@ class DynamicMooring:
         self.settings = settings
         self.batch = int(batch)
         self._w = _workspace(model.n_segments)
+        self._scheme = {"ros2": 0, "bdf2": 1}[settings.integrator]
 
     def init(self, r_fair: np.ndarray, relax: float | None = None) -> DynamicState:
         """Static catenary shape at fairlead positions ``r_fair (B, L, 3)``, then relaxed.
@@ -688,7 +772,8 @@ class DynamicMooring:
         for b in range(B):
             for k in range(L):
                 _static_solve_flat(r[b, k], self.model.params, self._w, 200, tol)
-        state = DynamicState(r=r, v=np.zeros_like(r), forces=np.zeros((B, L, 3)), tension=np.zeros((B, L)))
+        state = DynamicState(r=r, v=np.zeros_like(r), forces=np.zeros((B, L, 3)), tension=np.zeros((B, L)),
+                             r_prev=r.copy(), v_prev=np.zeros_like(r), step_prev=np.zeros((B, L)))
         relax = self.settings.relaxation_time if relax is None else float(relax)
         zero = np.zeros((B, L, 3))
         fixed = np.ascontiguousarray(r_fair)
@@ -699,6 +784,7 @@ class DynamicMooring:
         if n == 0:
             self.step(state, fixed, zero, 0.0)
         state.v[...] = 0.0
+        state.step_prev[...] = 0.0
         return state
 
     def step(self, state: DynamicState, r_fair: np.ndarray, v_fair: np.ndarray, dt: float):
@@ -711,8 +797,9 @@ class DynamicMooring:
         nsub = max(1, int(math.ceil(dt / self.settings.max_time_step - 1e-9)))
         if dt <= 0.0:
             nsub, dt = 1, 1e-6
-        _step_batch(state.r, state.v, np.ascontiguousarray(r_fair, dtype=float), np.ascontiguousarray(v_fair, dtype=float),
-                    float(dt), nsub, self.model.params, self._w, state.forces, state.tension)
+        _step_batch(state.r, state.v, state.r_prev, state.v_prev, state.step_prev,
+                    np.ascontiguousarray(r_fair, dtype=float), np.ascontiguousarray(v_fair, dtype=float),
+                    float(dt), nsub, self._scheme, self.model.params, self._w, state.forces, state.tension)
         return state.forces, state
 
     def tension(self, state: DynamicState) -> np.ndarray:

@@ -63,6 +63,7 @@ DEFAULTS: dict[str, Any] = {
     "seabed_damping": 3.0e5,
     "friction_coefficient": 0.7,
     "friction_slip_velocity": 0.01,
+    "integrator": "bdf2",
     "max_time_step": 0.05,
     "relaxation_time": 60.0,
     "table_span_range": 60.0,
@@ -161,6 +162,7 @@ class MooringSettings:
     seabed_damping: float
     friction_coefficient: float
     friction_slip_velocity: float
+    integrator: str
     max_time_step: float
     relaxation_time: float
     table_span_range: float
@@ -410,12 +412,14 @@ def mooring_settings(cfg: Mapping[str, Any] | None = None) -> MooringSettings:
     s = _section(cfg)
     if s["model"] not in ("quasistatic", "dynamic"):
         raise ValueError(f"config key 'mooring.model' = {s['model']!r} must be 'quasistatic' or 'dynamic'")
+    if s["integrator"] not in ("bdf2", "ros2"):
+        raise ValueError(f"config key 'mooring.integrator' = {s['integrator']!r} must be 'bdf2' or 'ros2'")
     if int(s["n_segments"]) < 2:
         raise ValueError(f"config key 'mooring.n_segments' = {s['n_segments']!r} must be at least 2")
     fields = MooringSettings.__dataclass_fields__
     kw = {k: s[k] for k in fields}
     for k in fields:
-        if k in ("model", "n_segments"):
+        if k in ("model", "n_segments", "integrator"):
             continue
         kw[k] = float(kw[k])
         if kw[k] < 0 or not np.isfinite(kw[k]):
