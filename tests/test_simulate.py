@@ -265,3 +265,77 @@ def test_steady_wind_offset_equals_catenary_static_balance(ms3):
     # the windward line (M2, anchored to the west) holds the platform: it tightens, M1/M3 slacken
     assert ten_st[1] > 1.77e6 > ten_st[0]
     assert ten_st[0] == pytest.approx(ten_st[2], rel=1e-6)
+
+
+# --------------------------------------------------------------------------------------
+# the OC4 model from the coarse Capytaine fixture of moorlife.hydro
+# --------------------------------------------------------------------------------------
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="module")
+def oc4():
+    from moorlife import hydro
+    from moorlife.io.platform import open_platform_nc, read_platform_config
+
+    cfg = read_platform_config(REPO / "config/platform.yaml")
+    pm = hydro.load_platform_model(open_platform_nc(DATA / "platform_coarse.nc"), cfg)
+    return pm, sim.platform_from(pm, cfg, {})
+
+
+def test_oc4_decay_periods_equal_coupled_eigenperiods(oc4):
+    """The integrator reproduces the coupled linear eigenperiods; heave is OC4's 17.3 s."""
+    import dataclasses
+
+    pm, plat = oc4
+    m = dataclasses.replace(plat, mooring_kind="linear", strip_cdn=plat.strip_cdn * 0, strip_cda=plat.strip_cda * 0)
+    t_lin = sim.linear_natural_periods(m)
+    for d, x0, dur in ((0, 5.0, 500.0), (2, 1.0, 100.0), (4, 0.03, 150.0)):
+        grid = env.record_grid(dur, 0.0, 0.1)
+        q0 = np.zeros((1, 6))
+        q0[0, d] = x0
+        rec = sim.integrate(m, quiet_forcing(m, grid), transient=0.0, q0=q0)
+        y = rec.motion[0, d]
+        up = np.flatnonzero((y[:-1] < 0) & (y[1:] >= 0))
+        tz = up + (-y[up]) / (y[up + 1] - y[up])
+        t_num = np.diff(tz[:4]).mean() * grid.dt
+        assert t_num == pytest.approx(t_lin[d], rel=0.01), d
+    assert t_lin[2] == pytest.approx(17.3, rel=0.05)  # OC4 heave (Robertson et al. 2014)
+    # the convolution memory reproduces the BEM added mass and damping
+    w = pm.omega[(pm.omega > 0.2) & (pm.omega < 2.0)]
+    z = sim.radiation_impedance(plat, w)
+    a_model = plat.mass[2, 2] - np.asarray(pm.mass)[2, 2] - z[:, 2, 2].imag / w
+    idx = np.searchsorted(pm.omega, w)
+    np.testing.assert_allclose(a_model, pm.added_mass[idx, 2, 2], rtol=0.01)
+    np.testing.assert_allclose(z[:, 2, 2].real, pm.damping[idx, 2, 2], rtol=0.02, atol=0.01 * pm.damping[:, 2, 2].max())
+
+
+@pytest.mark.slow
+def test_simulate_store_end_to_end(oc4, tmp_path):
+    """Rule adapter path: cases.zarr -> map_cases (Dask) -> complete simulations.zarr."""
+    import xarray as xr
+
+    from moorlife.io import open_zarr, write_zarr
+    from moorlife.io.simulation import simulate_store
+
+    cases = xr.Dataset(
+        {k: ("case", np.asarray(v, dtype=float)) for k, v in sea(3).items()}
+        | {"hindcast_index": ("case", np.arange(3)), "role": ("case", np.array(["train", "train", "validate"]))},
+        coords={"case": np.arange(3)},
+    )
+    write_zarr(cases, tmp_path / "results/selection/cases.zarr")
+    out = tmp_path / "results/MS3/simulations.zarr"
+    ds = simulate_store(
+        tmp_path / "results/selection/cases.zarr", DATA / "platform_coarse.nc", REPO / "config/platform.yaml", out,
+        dim="case", mooring_system="MS3", mooring_row=ROWS["MS3"], seed=7,
+        sim_cfg={**SIM, "batch_size": 2, "duration": 120.0, "transient": 30.0}, mooring_cfg=QS, fatigue_cfg={},
+        stats_cfg=STATS, threads=1,
+    )
+    back = open_zarr(out)
+    for name in (*sim.names.SIM_SCALAR_VARS, *sim.names.SIM_LINE_VARS, "tension_mean", "hs", "role"):
+        assert name in back, name
+    assert back["tension_mpm"].dims == ("case", "line")
+    assert back["tension_mean"].attrs["units"] == "N"
+    assert np.all(np.isfinite(back["damage_sn"].values))
+    np.testing.assert_array_equal(back["surge_mpm"].values, ds["surge_mpm"].values)
