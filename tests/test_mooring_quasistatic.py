@@ -221,3 +221,23 @@ def test_quasistatic_forces_point_to_anchors_and_balance_at_rest():
         cos = forces[0, k, :2] @ d / np.linalg.norm(forces[0, k, :2]) / np.linalg.norm(d)
         assert cos == pytest.approx(1.0, abs=1e-9)
     np.testing.assert_allclose(model.tension(state), np.linalg.norm(forces, axis=-1))
+
+
+def test_fairlead_kinematics_and_loads():
+    from moorlife.mooring import fairlead_kinematics, mooring_loads, rotation_matrix
+
+    # yaw 90 deg maps M2's fairlead (-40.868, 0) to (0, -40.868); a pure translation adds
+    r, v = fairlead_kinematics(LAYOUT, [[1.0, 2.0, 3.0, 0.0, 0.0, np.pi / 2]], [[0.1, 0.0, 0.0, 0.0, 0.0, 0.01]])
+    np.testing.assert_allclose(r[0, 1], [1.0, 2.0 - 40.868, 3.0 - 14.0], atol=1e-9)
+    np.testing.assert_allclose(v[0, 1], [0.1 + 0.01 * 40.868, 0.0, 0.0], atol=1e-12)
+    R = rotation_matrix([[0.1, -0.2, 0.3]])[0]
+    np.testing.assert_allclose(R @ R.T, np.eye(3), atol=1e-12)
+    # pitch (about y) moves a fairlead on +x downwards
+    r, _ = fairlead_kinematics(LAYOUT, [[0, 0, 0, 0, 0.1, 0]], np.zeros((1, 6)))
+    assert r[0, 0, 2] < -14.0 and r[0, 1, 2] > -14.0
+    # loads: a unit downward force at (10, 0, 0) gives a moment +10 about y
+    F = np.zeros((1, 3, 3))
+    F[0, 0, 2] = -1.0
+    rf = np.zeros((1, 3, 3))
+    rf[0, 0, 0] = 10.0
+    np.testing.assert_allclose(mooring_loads(F, rf, np.zeros((1, 3)))[0], [0, 0, -1, 0, 10, 0], atol=1e-12)

@@ -42,6 +42,9 @@ __all__ = [
     "MooringModel",
     "make_mooring",
     "fairlead_positions",
+    "fairlead_kinematics",
+    "mooring_loads",
+    "rotation_matrix",
     "line_properties",
     "check_r4s",
     "oc4_layout",
@@ -110,3 +113,68 @@ def fairlead_positions(layout: Layout, offset: np.ndarray) -> np.ndarray:
     """Fairlead positions ``(B, L, 3)`` for rigid translations ``offset (B, 3)`` of the platform (m)."""
     offset = np.atleast_2d(np.asarray(offset, dtype=float))
     return layout.fairleads_body[None, :, :] + offset[:, None, :]
+
+
+def rotation_matrix(angles: np.ndarray) -> np.ndarray:
+    """Rotation matrices ``(B, 3, 3)`` of roll, pitch, yaw ``(B, 3)`` (rad), ``R = Rz Ry Rx``."""
+    a = np.atleast_2d(np.asarray(angles, dtype=float))
+    cr, sr = np.cos(a[:, 0]), np.sin(a[:, 0])
+    cp, sp = np.cos(a[:, 1]), np.sin(a[:, 1])
+    cy, sy = np.cos(a[:, 2]), np.sin(a[:, 2])
+    R = np.empty((a.shape[0], 3, 3))
+    R[:, 0, 0] = cy * cp
+    R[:, 0, 1] = cy * sp * sr - sy * cr
+    R[:, 0, 2] = cy * sp * cr + sy * sr
+    R[:, 1, 0] = sy * cp
+    R[:, 1, 1] = sy * sp * sr + cy * cr
+    R[:, 1, 2] = sy * sp * cr - cy * sr
+    R[:, 2, 0] = -sp
+    R[:, 2, 1] = cp * sr
+    R[:, 2, 2] = cp * cr
+    return R
+
+
+def fairlead_kinematics(layout: Layout, pose: np.ndarray, velocity: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Fairlead positions and velocities of a rigid platform.
+
+    Parameters
+    ----------
+    layout : Layout
+    pose : numpy.ndarray, shape (B, 6)
+        Surge, sway, heave (m) of the body origin (still water line on the centreline) and
+        roll, pitch, yaw (rad), ``R = Rz(yaw) Ry(pitch) Rx(roll)``.
+    velocity : numpy.ndarray, shape (B, 6)
+        Translational (m/s) and angular (rad/s, global frame) velocity.
+
+    Returns
+    -------
+    r_fair, v_fair : numpy.ndarray, shape (B, L, 3)
+        ``x + R p`` and ``v + omega x (R p)`` for the body-frame fairleads ``p``.
+    """
+    pose = np.atleast_2d(np.asarray(pose, dtype=float))
+    velocity = np.atleast_2d(np.asarray(velocity, dtype=float))
+    arm = np.einsum("bij,lj->bli", rotation_matrix(pose[:, 3:]), layout.fairleads_body)
+    r = pose[:, None, :3] + arm
+    v = velocity[:, None, :3] + np.cross(velocity[:, None, 3:], arm)
+    return r, v
+
+
+def mooring_loads(forces: np.ndarray, r_fair: np.ndarray, reference: np.ndarray) -> np.ndarray:
+    """Total mooring force and moment on the platform about a reference point.
+
+    Parameters
+    ----------
+    forces : numpy.ndarray, shape (B, L, 3)
+        Line forces on the platform at the fairleads, N.
+    r_fair : numpy.ndarray, shape (B, L, 3)
+        Fairlead positions, m.
+    reference : numpy.ndarray, shape (B, 3)
+        Point about which moments are taken (e.g. the body origin), m.
+
+    Returns
+    -------
+    numpy.ndarray, shape (B, 6)
+        ``Fx, Fy, Fz`` (N) and ``Mx, My, Mz`` (N m), global frame.
+    """
+    arm = r_fair - np.asarray(reference, dtype=float)[:, None, :]
+    return np.concatenate([forces.sum(axis=1), np.cross(arm, forces).sum(axis=1)], axis=1)
