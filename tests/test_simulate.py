@@ -339,3 +339,15 @@ def test_simulate_store_end_to_end(oc4, tmp_path):
     assert back["tension_mean"].attrs["units"] == "N"
     assert np.all(np.isfinite(back["damage_sn"].values))
     np.testing.assert_array_equal(back["surge_mpm"].values, ds["surge_mpm"].values)
+
+
+def test_keep_timeseries_returns_the_records(ms3):
+    out = sim.simulate_batch(sea(2), case_ids=np.array([3, 4]), mooring_system="MS3", seed=5, model_inputs=ms3,
+                             sim_cfg={**SIM, "keep_timeseries": True, "duration": 120.0}, fatigue_cfg=None,
+                             stats_cfg=STATS)
+    nt = int(round(120.0 / 0.1))
+    assert out["ts_surge"].shape == (2, nt) and out["ts_surge"].dtype == np.float32
+    assert out["ts_tension"].shape == (2, 3, nt)
+    np.testing.assert_allclose(out["ts_tension"].max(axis=-1), out["tension_max"], rtol=1e-6)
+    assert "damage_sn" not in out  # fatigue_cfg=None skips the damage
+    assert sim.output_attrs("ts_pitch")["units"] == "rad"
