@@ -335,7 +335,14 @@ def _solve_blocks(S, Winv, b, x, N, tmp):
 
 @njit(cache=True, fastmath=True, error_model="numpy")
 def _factor(ws, S, Winv, D, tmpm, N, cs, cg, cz):
-    """Blocks S_s = cs*cint... (see _ros2_step) and the block-Thomas inverses W_i^-1."""
+    """Coupling blocks and block-Thomas inverses of ``M + cz C + (segments) + cg Kz``.
+
+    Segment s couples its nodes with ``S_s = (cs + cg * sa_s) q q' + cg * sg_s I`` (internal
+    damping ``cs = b * c_int``, axial and geometric stiffness ``cg = b**2``); ``Winv[i]`` are
+    the inverted pivots ``W_i = D_i - S_{i-1} W_{i-1}^-1 S_{i-1}``, computed with the rank-one
+    structure of ``S``: ``S W^-1 S = al^2 (q'g) q q' + al be (q g' + g q') + be^2 W^-1``,
+    ``g = W^-1 q``.
+    """
     F, segf, sq, sa, sg, tang, am, bm, C, Kz = ws
     for s in range(N):
         al = cs + cg * sa[s]
@@ -351,12 +358,21 @@ def _factor(ws, S, Winv, D, tmpm, N, cs, cg, cz):
             D[a, a] += am[i]
         D[2, 2] += cg * Kz[i]
         if i > 1:
+            j = i - 1
+            al = cs + cg * sa[j]
+            be = cg * sg[j]
+            q0, q1, q2 = sq[j, 0], sq[j, 1], sq[j, 2]
+            g0 = Winv[j, 0, 0] * q0 + Winv[j, 0, 1] * q1 + Winv[j, 0, 2] * q2
+            g1 = Winv[j, 1, 0] * q0 + Winv[j, 1, 1] * q1 + Winv[j, 1, 2] * q2
+            g2 = Winv[j, 2, 0] * q0 + Winv[j, 2, 1] * q1 + Winv[j, 2, 2] * q2
+            a2s = al * al * (q0 * g0 + q1 * g1 + q2 * g2)
+            ab = al * be
+            b2 = be * be
+            qv = (q0, q1, q2)
+            gv = (g0, g1, g2)
             for a in range(3):
                 for b in range(3):
-                    tmpm[a, b] = S[i - 1, a, 0] * Winv[i - 1, 0, b] + S[i - 1, a, 1] * Winv[i - 1, 1, b] + S[i - 1, a, 2] * Winv[i - 1, 2, b]
-            for a in range(3):
-                for b in range(3):
-                    D[a, b] -= tmpm[a, 0] * S[i - 1, 0, b] + tmpm[a, 1] * S[i - 1, 1, b] + tmpm[a, 2] * S[i - 1, 2, b]
+                    D[a, b] -= a2s * qv[a] * qv[b] + ab * (qv[a] * gv[b] + gv[a] * qv[b]) + b2 * Winv[j, a, b]
         _inv3(D, Winv[i])
 
 
