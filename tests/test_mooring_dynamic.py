@@ -190,6 +190,16 @@ def test_batch_members_are_independent_and_deterministic():
     assert np.all(np.isfinite(one)) and one[-1, 0, 1] != one[0, 0, 1]
 
 
+def test_bad_shapes_are_refused():
+    props = lines.line_properties(MS2)
+    model = make_mooring("dynamic", props, LAYOUT, {"mooring": {"relaxation_time": 0.0}}, batch=2)
+    state = model.init(fairlead_positions(LAYOUT, np.zeros((2, 3))))
+    with pytest.raises(ValueError, match="shape"):
+        model.step(state, np.zeros((1, 3, 3)), np.zeros((1, 3, 3)), 0.1)
+    with pytest.raises(ValueError, match="kind"):
+        make_mooring("fem", props, LAYOUT, None)
+
+
 def test_time_step_convergence():
     props = lines.line_properties(MS2)
     t = np.arange(0.0, 60.0 + 1e-9, 0.1)

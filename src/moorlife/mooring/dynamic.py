@@ -757,7 +757,11 @@ class DynamicState:
 
 
 class DynamicMooring:
-    """Lumped-mass lines with the simulator interface (see :mod:`moorlife.mooring`)."""
+    """Lumped-mass lines with the simulator interface (see :mod:`moorlife.mooring`).
+
+    One instance holds one work buffer: use one instance per thread (Dask workers are
+    processes, so this is the default). States from :meth:`init` are independent.
+    """
 
     kind = "dynamic"
 
@@ -810,12 +814,18 @@ class DynamicMooring:
         and the new position and velocity; the step is cut into ``ceil(dt / max_time_step)``
         ROS2 substeps. ``forces (B, L, 3)`` is a view into the state (overwritten next call).
         """
+        r_fair = np.ascontiguousarray(r_fair, dtype=float)
+        v_fair = np.ascontiguousarray(v_fair, dtype=float)
+        if r_fair.shape != state.forces.shape or v_fair.shape != state.forces.shape:
+            raise ValueError(
+                f"fairlead positions {r_fair.shape} and velocities {v_fair.shape} must have the state's "
+                f"shape (batch, lines, 3) = {state.forces.shape}"
+            )
         nsub = max(1, int(math.ceil(dt / self.settings.max_time_step - 1e-9)))
         if dt <= 0.0:
             nsub, dt = 1, 1e-6
         _step_batch(state.r, state.v, state.r_prev, state.v_prev, state.step_prev,
-                    np.ascontiguousarray(r_fair, dtype=float), np.ascontiguousarray(v_fair, dtype=float),
-                    float(dt), nsub, self._scheme, self.model.params, self._w, state.forces, state.tension)
+                    r_fair, v_fair, float(dt), nsub, self._scheme, self.model.params, self._w, state.forces, state.tension)
         return state.forces, state
 
     def tension(self, state: DynamicState) -> np.ndarray:
