@@ -351,3 +351,28 @@ def test_keep_timeseries_returns_the_records(ms3):
     np.testing.assert_allclose(out["ts_tension"].max(axis=-1), out["tension_max"], rtol=1e-6)
     assert "damage_sn" not in out  # fatigue_cfg=None skips the damage
     assert sim.output_attrs("ts_pitch")["units"] == "rad"
+
+
+@pytest.mark.parametrize("kin_every", [1, 2, 3])
+def test_drag_kinematics_match_linear_wave_theory(kin_every):
+    """Strip velocities of build_forcing = direct sum of Airy components (finite depth)."""
+    m = synthetic_model(strips=True)
+    grid = env.record_grid(200.0, 0.0, 0.1)
+    rng = np.random.default_rng(3)
+    idx = np.array([40, 75, 130])
+    amp = (rng.normal(size=3) + 1j * rng.normal(size=3))[None, :] * 0.5
+    w = idx * grid.d_omega
+    theta = 0.4
+    waves = env.WaveComponents(index=idx, omega=w, amplitude=amp, theta=np.array([theta]))
+    f = sim.build_forcing(m, grid, waves, np.zeros((1, grid.n_steps + 1)), np.array([270.0]), kin_every=kin_every,
+                          second_order=False)
+    k = env.wave_number(w, 200.0)
+    t = np.arange(f.kinematics.shape[1]) * kin_every * grid.dt
+    for s_, p in enumerate(m.strip_pos):
+        ph = amp[0][None, :] * np.exp(1j * (k * (p[0] * np.cos(theta) + p[1] * np.sin(theta)))[None, :]
+                                      - 1j * np.outer(t, w))
+        uh = np.real(ph * (w * np.cosh(k * (p[2] + 200.0)) / np.sinh(k * 200.0))[None, :]).sum(axis=1)
+        uz = np.real(-1j * ph * (w * np.sinh(k * (p[2] + 200.0)) / np.sinh(k * 200.0))[None, :]).sum(axis=1)
+        np.testing.assert_allclose(f.kinematics[0, :, s_, 0], uh * np.cos(theta), atol=2e-5)
+        np.testing.assert_allclose(f.kinematics[0, :, s_, 1], uh * np.sin(theta), atol=2e-5)
+        np.testing.assert_allclose(f.kinematics[0, :, s_, 2], uz, atol=2e-5)

@@ -35,6 +35,7 @@ from typing import Any
 
 import numba
 import numpy as np
+import scipy.fft
 import scipy.linalg
 
 from moorlife import environment as env
@@ -381,19 +382,25 @@ def build_forcing(
         if second_order:
             d = _interp_omega(_interp_heading(model.drift, model.headings, theta), model.omega, waves.omega)
             for dof in range(6):
-                pos = np.sqrt(np.maximum(d[:, dof], 0.0)) * waves.amplitude[b]
-                neg = np.sqrt(np.maximum(-d[:, dof], 0.0)) * waves.amplitude[b]
-                a_pos = env.synthesise_complex(pos[None, :], waves.index, grid)[0]
-                a_neg = env.synthesise_complex(neg[None, :], waves.index, grid)[0]
-                force[b, :, dof] += np.abs(a_pos) ** 2 - np.abs(a_neg) ** 2
+                for sign in (1.0, -1.0):
+                    part = np.maximum(sign * d[:, dof], 0.0)
+                    if not part.any():
+                        continue
+                    a = env.synthesise_complex((np.sqrt(part) * waves.amplitude[b])[None, :], waves.index, grid)[0]
+                    force[b, :, dof] += sign * (a.real**2 + a.imag**2)
         if ns:
             tf = _drag_kinematics_tf(model, k, waves.omega, theta)  # (nk, ns, 3)
             coeff = (waves.amplitude[b][:, None, None] * tf).reshape(waves.omega.size, ns * 3).T
-            idx = np.minimum(np.arange(nkin) * kin_every, grid.n_fft - 1)
             flat = kin[b].reshape(nkin, ns * 3)
+            # synthesise directly on the coarse kinematics grid (same frequency bins)
+            coarse = grid.n_fft % kin_every == 0 and 2 * waves.index.max() < grid.n_fft // kin_every
+            n_c = grid.n_fft // kin_every if coarse else grid.n_fft
+            idx = (np.arange(nkin) * (1 if coarse else kin_every)) % n_c  # periodic synthesis
             for c0 in range(0, ns * 3, _KIN_CHUNK):  # bounded temporaries
                 c1 = min(c0 + _KIN_CHUNK, ns * 3)
-                series = env.synthesise(coeff[c0:c1], waves.index, grid, n=grid.n_fft)
+                spec = np.zeros((c1 - c0, n_c // 2 + 1), dtype=complex)
+                spec[:, waves.index] = np.conj(coeff[c0:c1]) * (n_c / 2.0)
+                series = scipy.fft.irfft(spec, n=n_c, axis=-1)
                 flat[:, c0:c1] = series[:, idx].T
     wdir = flow_vector(np.asarray(wind_dir_deg, dtype=float)).reshape(nb, 2)
     return Forcing(grid=grid, force=force, wind=np.asarray(wind, dtype=float), wind_dir=wdir,
@@ -618,7 +625,7 @@ def _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
 
 @numba.njit(cache=True)
 def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, motion, accel, tension, fmoor6, acc,
-             hist, ker, kpi, kpj,
+             hist, stride, ker, kpi, kpj,
              force, wind, wdir, kin, kin_every, minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc,
              spos, saxis, scdn, scda, hub, tv, tf, fa, fb, fc, fd):  # pragma: no cover - numba
     """One coupled step ``j -> j + 1`` of the batch, with recording (kept sample ``i``).
@@ -653,7 +660,7 @@ def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, 
             fmoor6[b, d] += static[d]
     nlag = ker.shape[0]
     if nlag > 0:
-        _convolve(j, v, hist, ker, kpi, kpj, fmoor6)
+        _convolve(j, stride, v, hist, ker, kpi, kpj, fmoor6)
     if i >= 0:
         for b in range(nb):
             for d in range(6):
@@ -669,15 +676,17 @@ def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, 
 
 
 @numba.njit(cache=True)
-def _convolve(j, v, hist, ker, kpi, kpj, out):  # pragma: no cover - numba
-    """Subtract the radiation convolution ``sum_k ker[k] v(t_j - k dt)`` from ``out (B, 6)``.
+def _convolve(j, stride, v, hist, ker, kpi, kpj, out):  # pragma: no cover - numba
+    """Subtract the radiation convolution ``sum_k ker[k] v(t_j - k stride dt)`` from ``out (B, 6)``.
 
-    ``ker (nlag, npairs)`` already holds the trapezoid weights and ``dt``; ``hist (B, nlag, 6)``
-    is the circular velocity history, into which ``v`` is stored first.
+    ``ker (nlag, npairs)`` already holds the trapezoid weights and its step ``stride dt``;
+    ``hist (B, nhist, 6)`` is the circular velocity history of every step, into which ``v`` is
+    stored first.
     """
     nlag, npair = ker.shape
-    jj = j % nlag
-    kmax = min(j + 1, nlag)
+    nhist = hist.shape[1]
+    jj = j % nhist
+    kmax = min(j // stride + 1, nlag)
     acc = np.empty(npair)
     for b in range(v.shape[0]):
         for d in range(6):
@@ -685,9 +694,9 @@ def _convolve(j, v, hist, ker, kpi, kpj, out):  # pragma: no cover - numba
         for p in range(npair):
             acc[p] = 0.0
         for k in range(kmax):
-            idx = jj - k
+            idx = jj - k * stride
             if idx < 0:
-                idx += nlag
+                idx += nhist
             for p in range(npair):
                 acc[p] += ker[k, p] * hist[b, idx, kpj[p]]
         for p in range(npair):
@@ -755,16 +764,25 @@ def _make_mooring(model: ModelInputs, batch: int):
 # --------------------------------------------------------------------------------------
 
 
-def _kernel_at(model: ModelInputs, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The retardation kernel resampled at the integration step, ``(nlag, npairs)``, and its pairs."""
+def _kernel_at(model: ModelInputs, dt: float) -> tuple[np.ndarray, int, np.ndarray, np.ndarray]:
+    """The retardation kernel with trapezoid weights, its stride in steps, and its DOF pairs.
+
+    The kernel keeps its own sampling when it is a whole number ``stride`` of steps (the
+    history is then summed every ``stride`` steps: the kernel and the velocity are smooth on
+    that scale), else it is resampled at ``dt``.
+    """
     if model.kernel.size == 0:
-        return np.zeros((0, 0)), np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+        return np.zeros((0, 0)), 1, np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    ratio = model.kernel_dt / dt
+    stride = int(round(ratio)) if abs(ratio - round(ratio)) < 1e-9 and round(ratio) >= 1 else 1
+    h = stride * dt
     t_src = np.arange(model.kernel.shape[0]) * model.kernel_dt
-    t = np.arange(0.0, t_src[-1] + 1e-9, dt)
+    t = np.arange(0.0, t_src[-1] + 1e-9, h)
     ker = np.stack([np.interp(t, t_src, model.kernel[:, p]) for p in range(model.kernel.shape[1])], axis=1)
-    w = np.full(t.size, dt)  # trapezoid weights folded in
+    w = np.full(t.size, h)  # trapezoid weights folded in
     w[[0, -1]] *= 0.5
-    return np.ascontiguousarray(ker * w[:, None]), model.kernel_pairs[:, 0].copy(), model.kernel_pairs[:, 1].copy()
+    return (np.ascontiguousarray(ker * w[:, None]), stride, model.kernel_pairs[:, 0].copy(),
+            model.kernel_pairs[:, 1].copy())
 
 
 @dataclass(frozen=True)
@@ -857,8 +875,8 @@ def integrate(
             model.strip_cdn, model.strip_cda, hub, model.thrust_speed, model.thrust_force,
             model.filt_a, model.filt_b, model.filt_c, model.filt_d)
     coupled = not linear
-    ker, kpi, kpj = _kernel_at(model, dt)
-    hist = np.zeros((nb, ker.shape[0], 6))
+    ker, stride, kpi, kpj = _kernel_at(model, dt)
+    hist = np.zeros((nb, max(1, (ker.shape[0] - 1) * stride + 1), 6))
     f_new = np.zeros((nb, 3, 3))
     ten = np.zeros((nb, 3))
     static = np.asarray(model.static_load, dtype=float)
@@ -868,11 +886,10 @@ def integrate(
         if coupled:
             # predictor: advance the lines to the fairlead positions extrapolated to t + dt
             _predict_fairleads(q, v, fair, dt, r_f, v_f)
-            f_step, mstate = moor.step(mstate, r_f, v_f, dt)
-            f_new[...] = f_step
-            ten[...] = moor.tension(mstate)
+            f_new, mstate = moor.step(mstate, r_f, v_f, dt)  # views, used before the next step
+            ten = moor.tension(mstate)
         _advance(j, j - j0, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, motion, accel, tension,
-                 fmoor6, acc, hist, ker, kpi, kpj, *args)
+                 fmoor6, acc, hist, stride, ker, kpi, kpj, *args)
     if linear:
         tension[:] = np.nan
     return Record(dt=dt, motion=motion, accel=accel, tension=tension)
