@@ -2,25 +2,32 @@
 
 The rigid platform obeys Cummins' equation about the SWL origin (``moorlife.conventions``)::
 
-    (M + A_inf) a = F_exc(t) + F_drift(t) - K q - C_r x_r + F_drag + F_thrust + F_moor
-    dx_r/dt = A_r x_r + B_r v                      (radiation memory, state space)
+    (M + A_inf) a = F_exc(t) + F_drift(t) - K q - int_0^T K_r(tau) v(t - tau) dtau
+                    + F_drag + F_thrust + F_moor + F_trim
 
 with ``q = (surge, sway, heave, roll, pitch, yaw)`` (m, rad), ``K`` the hydrostatic stiffness
-with gravity, first-order excitation ``F_exc`` and Newman's slow drift ``F_drift`` synthesised
-for the whole record by FFT (:mod:`moorlife.environment`), Morison drag on the relative
-velocity of every strip, and the rotor thrust ``T = 0.5 rho_a A Ct(v) v^2`` of the filtered
-relative wind ``v`` (a notch removes the pitch band) applied at the hub along the wind (nacelle
-aligned with the wind). The mooring is a separate model (quasi-static surface or dynamic
-lumped-mass lines, :mod:`moorlife.mooring`) advanced once per step from the fairlead positions
-and velocities; its fairlead forces drive the platform over the next step (explicit partitioned
-coupling, lag ``dt``; the platform's own states use classical Runge-Kutta 4 with forcing
-linearly interpolated at mid-step). The whole batch is advanced by one Numba kernel per step.
+with gravity, the radiation memory as a convolution with the retardation kernel ``K_r`` of the
+BEM damping (default; or the fitted state space ``dx/dt = A x + B v``, force ``-C x``), first-
+order excitation ``F_exc`` and Newman's slow drift ``F_drift`` synthesised for the whole record
+by FFT (:mod:`moorlife.environment`), Morison drag on the relative velocity of every strip, the
+rotor thrust ``T = 0.5 rho_a A Ct(v) v^2`` of the relative wind ``v`` passed through a notch at
+the pitch frequency and applied at the hub along the wind (nacelle aligned with the wind), and a
+constant trim load (the ballast adjustment that keeps each mooring system's platform at its
+design draft and even keel). ``A_inf`` is made consistent with the memory (Ogilvie), so that
+the model reproduces the BEM ``A(omega)`` and ``B(omega)``.
+
+The mooring is a separate model (quasi-static surface or dynamic lumped-mass lines,
+:mod:`moorlife.mooring`), advanced once per step to the fairlead positions extrapolated to the
+end of the step; the platform is driven by the mean of the start and end fairlead forces
+(explicit partitioned coupling, second order). The platform's own states use classical RK4
+with forcing interpolated linearly inside the step; the convolution is held over the step.
+The whole batch is advanced by one Numba kernel per step.
 
 Design notes
 ------------
 * Loads use linearised kinematics (small rotations): strip and hub velocities are
   ``v + omega x p`` with the body-frame position ``p``; the fairleads use the exact rotation.
-* Wave kinematics for drag are evaluated at the strips' mean positions (first-order).
+* Wave kinematics for drag are evaluated at the strips' mean positions (first order).
 * The kept record starts after ``transient``; statistics use only the kept part.
 * A batch is bit-identical to its cases run alone: every random stream comes from
   ``case_rng(seed, mooring_system, case_id)`` and the kernel treats cases independently.
@@ -75,6 +82,7 @@ EXTRA_SCALAR_VARS: tuple[str, ...] = (
     "surge_std",
     "pitch_mpm",
     "offset_max",
+    "gev_corr_pitch_mpm",
 )
 #: Extra per-line outputs per case.
 EXTRA_LINE_VARS: tuple[str, ...] = ("tension_mean", "tension_std", "tension_max")
@@ -1191,6 +1199,16 @@ def simulate_batch(
     forcing = build_forcing(model, grid, waves, wind, sea["wind_dir"], kin_every=kin_every,
                             second_order=s["second_order"])
     record = integrate(model, forcing, transient=s["transient"])
+    bad = ~np.isfinite(record.motion).all(axis=(1, 2))
+    if model.mooring_kind != "linear":
+        bad |= ~np.isfinite(record.tension).all(axis=(1, 2))
+    if bad.any():
+        b = int(np.flatnonzero(bad)[0])
+        raise FloatingPointError(
+            f"simulate_batch ({mooring_system}): case {ids[b]} diverged (non-finite motion or tension) with "
+            f"hs={sea['hs'][b]}, tp={sea['tp'][b]}, wave_dir={sea['wave_dir'][b]}, wind_speed={sea['wind_speed'][b]}, "
+            f"wind_dir={sea['wind_dir'][b]}; reduce simulation.dt"
+        )
     st = {**dict(stats_cfg or {}), "mpm_duration": s["mpm_duration"]}
     return summarise(record, line_info=model.line_info, fatigue_cfg=fatigue_cfg, stats_cfg=st,
                      keep_timeseries=s["keep_timeseries"])
