@@ -444,8 +444,12 @@ def bem_settings(hydro_cfg: Mapping, platform_cfg: Mapping) -> dict:
 
     Geometry and environment come from ``platform.yaml``; grid, headings and mesh from the
     ``hydro`` section of the study config. Mass properties and the linear mooring stiffness
-    are included because the mean drift coefficients depend on the body motions.
+    are included because the mean drift coefficients depend on the body motions. For
+    ``source: wamit`` only the file prefix and the environment matter.
     """
+    if hydro_cfg["source"] == "wamit":  # only the files (rule inputs) and the redimensionalisation
+        return {"source": "wamit", "wamit_prefix": hydro_cfg.get("wamit_prefix"),
+                "environment": dict(platform_cfg["environment"])}
     res = hydro_cfg["mesh"]["resolution"]
     sizes = hydro_cfg["mesh"]["panel_size"]
     if res not in sizes:
@@ -595,7 +599,8 @@ def far_field_drift(
     H_dif : numpy.ndarray
         ``(nw, nh, nt)`` diffraction Kochin functions (Capytaine convention).
     H_rad : numpy.ndarray
-        ``(nw, 6, nt)`` radiation Kochin functions per unit velocity... as Capytaine.
+        ``(nw, 6, nt)`` radiation Kochin functions per unit motion amplitude (Capytaine's
+        radiation problems prescribe a unit displacement, velocity ``-i w``).
     rao_capytaine : numpy.ndarray
         ``(nw, nh, 6)`` motion per unit amplitude in Capytaine's convention.
 
