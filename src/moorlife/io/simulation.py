@@ -10,6 +10,7 @@ from typing import Any
 
 import xarray as xr
 
+import moorlife
 from moorlife import names
 from moorlife.io import open_zarr
 from moorlife.io.platform import open_platform_nc, read_platform_config
@@ -55,7 +56,7 @@ def simulate_store(
     model = simulate.prepare_model(platform_ds, platform_cfg, row, mooring_cfg, sim_cfg)
     log.info("%s: %s mooring, %d sea states along %r", mooring_system, model.mooring_kind, cases.sizes[dim], dim)
     fp = fingerprint(
-        "simulate-v1", mooring_system, row, int(seed), dict(sim_cfg), dict(mooring_cfg or {}), dict(fatigue_cfg or {}),
+        "simulate-v1", moorlife.__version__, mooring_system, row, int(seed), dict(sim_cfg), dict(mooring_cfg or {}), dict(fatigue_cfg or {}),
         dict(stats_cfg or {}), platform_cfg, dataset_digest(cases), dataset_digest(platform_ds),
     )
     kwargs = dict(mooring_system=mooring_system, seed=int(seed), model_inputs=model, sim_cfg=dict(sim_cfg),
