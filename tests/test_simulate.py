@@ -376,3 +376,24 @@ def test_drag_kinematics_match_linear_wave_theory(kin_every):
         np.testing.assert_allclose(f.kinematics[0, :, s_, 0], uh * np.cos(theta), atol=2e-5)
         np.testing.assert_allclose(f.kinematics[0, :, s_, 1], uh * np.sin(theta), atol=2e-5)
         np.testing.assert_allclose(f.kinematics[0, :, s_, 2], uz, atol=2e-5)
+
+
+def test_thrust_ramps_to_zero_above_cut_out(ms3):
+    """Steady wind above cut-out + ramp (26 m/s): no thrust, the platform stays at its trim;
+    the wind direction sets the offset direction (nacelle aligned with the wind)."""
+    import dataclasses
+
+    from moorlife import turbine
+
+    v = np.arange(-40.0, 80.0, 0.02)
+    ms3 = dataclasses.replace(ms3, thrust_speed=v, thrust_force=turbine.thrust(
+        v, np.array([3.0, 11.4, 25.0]), np.array([0.8, 0.8, 0.08])))
+    calm = dict(hs=[0.0], tp=[8.0], wave_dir=[270.0])
+    cfg = {**SIM, "wind": {"spectrum": "none"}, "duration": 120.0, "transient": 60.0}
+    kw = dict(case_ids=np.array([1]), mooring_system="MS3", seed=1, model_inputs=ms3, sim_cfg=cfg,
+              fatigue_cfg=None, stats_cfg=STATS)
+    off = sim.simulate_batch(sea(1, wind_speed=[30.0], wind_dir=[270.0], **calm), **kw)
+    assert abs(off["surge_mean"][0]) < 0.05
+    on = sim.simulate_batch(sea(1, wind_speed=[11.4], wind_dir=[0.0], **calm), **kw)
+    assert on["sway_mean"][0] < -3.0  # wind from the north pushes the platform south
+    assert abs(on["surge_mean"][0]) < 0.25 * abs(on["sway_mean"][0])  # the spread is not symmetric about y
