@@ -130,6 +130,66 @@ def run_ours(props, layout, cfg, t: np.ndarray, batch: int = 1) -> tuple[np.ndar
     return out, cpu, c_init
 
 
+def profile_kernels(props, layout, repeat: int) -> None:
+    """Microseconds per call of the numba kernels of one BDF2 step, on a moving MS line."""
+    from numba import njit
+
+    from moorlife.mooring import dynamic as dyn
+
+    model = make_mooring("dynamic", props, layout, None, batch=1)
+    state = model.init(fairlead_positions(layout, np.zeros((1, 3))))
+    t = np.arange(0.0, 60.0 + 1e-9, 0.1)
+    X, V = surge(t)
+    vf = np.zeros((1, 3, 3))
+    for i in range(1, t.size):
+        vf[..., 0] = V[i]
+        model.step(state, fairlead_positions(layout, [[X[i], 0.0, 0.0]]), vf, 0.1)
+    r, v = state.r[0, 1].copy(), state.v[0, 1].copy()
+    rp, vp = state.r_prev[0, 1].copy(), state.v_prev[0, 1].copy()
+    p, buf, N = model.model.params, model._w, model.model.n_segments
+
+    @njit
+    def forces(n, r, v, p, buf, N, jac):
+        w, _ = dyn._views(buf, N)
+        for _ in range(n):
+            dyn._node_forces(r, v, p, 0.05, jac, w[0])
+
+    @njit
+    def factor(n, r, v, p, buf, N):
+        w, _ = dyn._views(buf, N)
+        dyn._node_forces(r, v, p, 0.05, True, w[0])
+        for _ in range(n):
+            dyn._factor(w[0], w[2], w[3], w[4], w[5], N, 0.0333 * p[3], 0.0333**2, 0.0333)
+
+    @njit
+    def solve(n, r, v, p, buf, N):
+        w, _ = dyn._views(buf, N)
+        for _ in range(n):
+            dyn._solve_blocks(w[2], w[3], w[6], w[10], N, w[13])
+
+    @njit
+    def step(n, r, v, p, buf, N, rp, vp):
+        w, _ = dyn._views(buf, N)
+        for _ in range(n):
+            r2, v2, rp2, vp2 = r.copy(), v.copy(), rp.copy(), vp.copy()
+            dyn._bdf2_step(r2, v2, rp2, vp2, r[N], v[N], 0.05, p, w)
+
+    n = 100000
+    print(f"\nKernels of one BDF2 step of one {N}-segment line (us per call, best of {repeat}):")
+    base = (r, v, p, buf, N)
+    for name, f, args in [("node forces + matrix pieces", forces, (*base, True)),
+                          ("node forces only", forces, (*base, False)),
+                          ("block factorisation", factor, base), ("block solve", solve, base),
+                          ("whole BDF2 step (+4 state copies)", step, (*base, rp, vp))]:
+        f(10, *args)
+        best = np.inf
+        for _ in range(repeat):
+            c0 = time.process_time()
+            f(n, *args)
+            best = min(best, time.process_time() - c0)
+        print(f"  {name:<36s} {1e6 * best / n:6.2f}")
+
+
 def stats_line(name: str, T: np.ndarray, ref: np.ndarray, keep: np.ndarray) -> str:
     parts = []
     for k in range(3):
@@ -211,6 +271,7 @@ def main() -> None:
             print(stats_line(name, T, ref, k2))
         else:
             print(stats_line(name, T, ref, keep))
+    profile_kernels(props, layout, args.repeat)
 
 
 if __name__ == "__main__":
