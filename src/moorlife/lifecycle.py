@@ -628,7 +628,7 @@ def reconstruct_lifecycle(
     model = fit_outputs(x[train], y[train], cols, settings, lo=lo, span=span)
     labels = [_label(c) for c in cols]
     log.info("RBF fitted on %d training states, %d outputs; shapes %s", int(train.sum()), len(cols),
-             dict(zip(labels, np.round(model.shape, 4))))
+             {lab: round(float(q), 4) for lab, q in zip(labels, model.shape)})
 
     hp = _points(hindcast, names.TIME)
     pred = rbf.predict_rbf(model, hp, chunk_rows=settings.chunk_rows)
