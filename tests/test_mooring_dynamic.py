@@ -198,6 +198,10 @@ def test_bad_shapes_are_refused():
         model.step(state, np.zeros((1, 3, 3)), np.zeros((1, 3, 3)), 0.1)
     with pytest.raises(ValueError, match="kind"):
         make_mooring("fem", props, LAYOUT, None)
+    r = fairlead_positions(LAYOUT, np.zeros((2, 3)))
+    r[1, 2, 0] = np.nan
+    with pytest.raises(FloatingPointError, match=r"MS2.*\(batch, line\) \[1, 2\]"):
+        model.step(state, r, np.zeros_like(r), 0.1)
 
 
 def test_time_step_convergence():

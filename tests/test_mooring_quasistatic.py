@@ -159,6 +159,8 @@ def test_force_table_interpolation_and_fallback():
     T = np.hypot(H, V)
     Te = np.hypot(exact[:, 0], exact[:, 1])
     assert np.max(np.abs(T / Te - 1)) < 2e-4
+    with pytest.raises(FloatingPointError, match="catenary"):
+        qs.table_lookup(tab, np.array([np.nan]), np.array([186.0]))
     # outside the table: exact solve, no extrapolation
     H, V = qs.table_lookup(tab, np.array([796.732 + 70.0]), np.array([186.0]))
     He, Ve = qs.catenary_solve(796.732 + 70.0, 186.0, 835.5, p.EA, p.wet_weight, settings.friction_coefficient)

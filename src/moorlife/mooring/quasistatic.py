@@ -145,8 +145,10 @@ def _lookup(XF, ZF, x0, z0, dx, dz, H, V, L, EA, w, CB):
     fz = (ZF - z0) / dz
     i = int(math.floor(fx))
     j = int(math.floor(fz))
-    if i < 0 or j < 0 or i >= nx - 1 or j >= nz - 1:
-        h, v, _ = _solve_robust(XF, ZF, L, EA, w, CB, 0.0, 0.0, 1e-8 * L)
+    if i < 0 or j < 0 or i >= nx - 1 or j >= nz - 1 or not (math.isfinite(XF) and math.isfinite(ZF)):
+        h, v, ok = _solve_robust(XF, ZF, L, EA, w, CB, 0.0, 0.0, 1e-8 * L)
+        if not ok:
+            raise FloatingPointError("catenary did not converge outside the force table")
         return h, v
     tx = fx - i
     tz = fz - j
