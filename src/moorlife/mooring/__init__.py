@@ -12,6 +12,13 @@ One interface for both models, "fairlead positions and velocities in, forces out
         # forces (B, 3, 3): force of each line ON THE PLATFORM at its fairlead, N, global frame
         tension = model.tension(state)           # (B, 3) fairlead tension magnitude, N
 
+Both models also have ``model.forces(state)`` (the last forces, ``(B, 3, 3)``); the simulator
+may rebuild a model for another batch size from a prototype without recomputing the force
+table or the line parameters: ``QuasiStaticMooring(proto.table, layout, batch)`` and
+``DynamicMooring(proto.model, props, layout, proto.settings, batch)``. Helpers:
+:func:`fairlead_kinematics` (fairlead positions and velocities of a rigid 6-DOF platform) and
+:func:`mooring_loads` (force and moment about a point).
+
 Shapes: ``B`` sea states (batch), 3 lines (M1, M2, M3, see :data:`moorlife.names.LINES`),
 3 components ``(x east, y north, z up)``. ``step`` advances the lines by ``dt`` to the instant
 at which the fairleads are at ``r_fair`` with velocity ``v_fair`` and returns the forces at
