@@ -305,3 +305,27 @@ def test_stores_comparison_and_sensitivity_end_to_end(tmp_path):
         == pytest.approx(2000.0)
     for p in [*outs.values(), *(tmp_path / f"{k}.png" for k in ("validation", "damage_mass", "recommendation"))]:
         assert p.stat().st_size > (200 if p.suffix == ".csv" else 5000), p
+
+
+def test_selection_normalisation_is_used_in_any_attribute_order():
+    hc = _hindcast(600, seed=11)
+    cases = _cases(hc, 40, 8, seed=12)
+    sims = _sims(cases)
+    order = ["hs", "tp", "wave_dir", "wind_speed", "wind_dir"]
+    lo = {"wind_speed": -5.0, "wind_dir": 0.0, "hs": 0.0, "tp": 2.0, "wave_dir": 0.0}
+    span = {"wind_speed": 40.0, "wind_dir": 180.0, "hs": 10.0, "tp": 20.0, "wave_dir": 180.0}
+    cases.attrs.update(norm_variables=order, norm_lo=[lo[v] for v in order], norm_span=[span[v] for v in order])
+    settings = lifecycle.RBFSettings(shape_mode="fixed", outputs=("surge_mpm",))
+    a = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=0)
+    # the same space given in METOCEAN_VARS order gives identical numbers
+    cases.attrs.update(norm_variables=list(names.METOCEAN_VARS), norm_lo=[lo[v] for v in names.METOCEAN_VARS],
+                       norm_span=[span[v] for v in names.METOCEAN_VARS])
+    b = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=0)
+    np.testing.assert_array_equal(a["nearest_distance"].values, b["nearest_distance"].values)
+    # and differs from the training-range normalisation
+    del cases.attrs["norm_lo"]
+    c = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=0)
+    assert not np.allclose(a["nearest_distance"].values, c["nearest_distance"].values)
+    cases.attrs.update(norm_lo=[0.0] * 4)
+    with pytest.raises(ValueError, match="inconsistent"):
+        lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=0)

@@ -164,6 +164,26 @@ def test_prediction_independent_of_chunking():
     np.testing.assert_array_equal(a, b)
 
 
+def test_prediction_independent_of_thread_counts():
+    import numba
+    from threadpoolctl import threadpool_limits
+
+    x = _sea_states(300, seed=21)
+    y = np.column_stack([np.sin(x[:, 2]) * x[:, 3], x[:, 0] ** 0.5, x[:, 2] ** 2])
+    model = rbf.fit_rbf(x, y, is_direction=DIRS5, shape=[0.1, 0.2, 0.2])
+    xq = _sea_states(5000, seed=22)
+    before = numba.get_num_threads()
+    try:
+        outs = []
+        for n in (1, min(2, numba.config.NUMBA_NUM_THREADS)):
+            numba.set_num_threads(n)
+            with threadpool_limits(limits=n):
+                outs.append(rbf.predict_rbf(model, xq, chunk_rows=1000))
+    finally:
+        numba.set_num_threads(before)
+    np.testing.assert_array_equal(outs[0], outs[1])
+
+
 def test_nearest_centre():
     x = _sea_states(30, seed=15)
     model = rbf.fit_rbf(x, x[:, 2], is_direction=DIRS5, shape=0.2)

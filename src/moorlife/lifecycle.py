@@ -571,6 +571,21 @@ def _points(ds: xr.Dataset, dim: str) -> np.ndarray:
     return np.column_stack([ds[v].transpose(dim).to_numpy().astype(float) for v in names.METOCEAN_VARS])
 
 
+def _selection_scaling(cases: xr.Dataset) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """The selection's normalisation (``norm_lo``/``norm_span`` attributes) in METOCEAN_VARS order."""
+    lo, span = cases.attrs.get("norm_lo"), cases.attrs.get("norm_span")
+    if lo is None or span is None:
+        log.info("cases store has no norm_lo/norm_span: normalising by the training states' range")
+        return None, None
+    order = list(cases.attrs.get("norm_variables", names.METOCEAN_VARS))
+    missing = [v for v in names.METOCEAN_VARS if v not in order]
+    if missing or len(order) != len(lo) or len(order) != len(span):
+        raise ValueError(f"cases.zarr: attributes norm_variables {order}, norm_lo, norm_span are inconsistent "
+                         f"(need {list(names.METOCEAN_VARS)})")
+    idx = [order.index(v) for v in names.METOCEAN_VARS]
+    return np.asarray(lo, dtype=float)[idx], np.asarray(span, dtype=float)[idx]
+
+
 def reconstruct_lifecycle(
     hindcast: xr.Dataset,
     cases: xr.Dataset,
@@ -623,8 +638,7 @@ def reconstruct_lifecycle(
         i, j = np.argwhere(bad)[0]
         raise ValueError(f"simulations: {_label(cols[j])} is not finite for case {int(common[i])} ({y[i, j]!r})")
     x = _points(cases, dim)
-    lo = cases.attrs.get("norm_lo")
-    span = cases.attrs.get("norm_span")
+    lo, span = _selection_scaling(cases)
     model = fit_outputs(x[train], y[train], cols, settings, lo=lo, span=span)
     labels = [_label(c) for c in cols]
     log.info("RBF fitted on %d training states, %d outputs; shapes %s", int(train.sum()), len(cols),

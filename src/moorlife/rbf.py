@@ -314,6 +314,19 @@ def gaussian(d2: npt.ArrayLike, shape: float) -> np.ndarray:
     return out
 
 
+@nb.njit(parallel=True, cache=True, fastmath=True)
+def _weighted_sum(k: np.ndarray, w_t: np.ndarray, cols: np.ndarray, out: np.ndarray) -> None:  # pragma: no cover - numba
+    # out[i, cols[o]] += sum_j k[i, j] * w_t[o, j]; each row by one thread in a fixed order, so
+    # the numbers do not depend on the thread count (multi-threaded BLAS may change the last bit).
+    n, m = k.shape
+    for i in nb.prange(n):
+        for o in range(w_t.shape[0]):
+            acc = 0.0
+            for j in range(m):
+                acc += k[i, j] * w_t[o, j]
+            out[i, cols[o]] += acc
+
+
 @nb.njit(parallel=True, cache=True)
 def _min_dist(zq: np.ndarray, zc_t: np.ndarray, isdir: np.ndarray, dmin: np.ndarray, imin: np.ndarray) -> None:  # pragma: no cover - numba
     n, d = zq.shape
@@ -725,7 +738,10 @@ def predict_rbf(model: RBFModel, points: npt.ArrayLike, *, chunk_rows: int = 819
     zc_t = np.ascontiguousarray(model.centres.T)
     isdir = model.space.is_direction.astype(np.bool_)
     groups = [(float(q), np.flatnonzero(model.shape == q)) for q in np.unique(model.shape)]
-    out = polynomial_basis(z, isdir) @ model.poly_coef
+    w_t = {q: np.ascontiguousarray(model.weights[:, cols].T) for q, cols in groups}
+    basis = polynomial_basis(z, isdir)
+    out = np.zeros((n, model.n_outputs))
+    _weighted_sum(basis, np.ascontiguousarray(model.poly_coef.T), np.arange(model.n_outputs), out)
     rows = max(1, int(chunk_rows))
     d2 = np.empty((min(rows, n), m))
     k = np.empty_like(d2)
@@ -736,7 +752,7 @@ def predict_rbf(model: RBFModel, points: npt.ArrayLike, *, chunk_rows: int = 819
         _sq_dist_block(z[s:e], zc_t, isdir, d2[:b])
         for q, cols in groups:
             _gaussian_block(d2[:b], 1.0 / (q * q), k[:b], tmp[:b])
-            out[s:e, cols] += k[:b] @ model.weights[:, cols]
+            _weighted_sum(k[:b], w_t[q], cols, out[s:e])
     if model.log_output.any():
         out[:, model.log_output] = 10.0 ** out[:, model.log_output]
     return out
