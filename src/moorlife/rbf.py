@@ -22,9 +22,10 @@ a geometric grid, or fixed (the paper: 0.1 for damage, 0.175 for tension). Outpu
 leave-one-out curve is flat share a grid value (``share_tol``), so prediction evaluates
 one kernel block per *distinct* shape parameter.
 
-Prediction runs in row chunks (bounded memory), float64, with numba for the distance and
-kernel blocks and BLAS for the weighted sums; every row is computed independently, so the
-numbers do not depend on chunk size or thread count.
+Prediction runs in row chunks (bounded memory), float64, in numba kernels (distance, kernel
+block, weighted sums); every row is computed independently in a fixed order, so the numbers do
+not depend on chunk size or thread count. The fit uses LAPACK (Cholesky, LU), whose last bit can
+depend on the number of BLAS threads: the workflow's ``lifecycle`` rule pins BLAS to one thread.
 """
 
 from __future__ import annotations
