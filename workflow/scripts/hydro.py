@@ -11,7 +11,7 @@ def main(smk):
         if p["source"] == "wamit":
             ds = read_wamit_dataset(p["wamit_prefix"], rho=env["rho_water"], g=env["gravity"], water_depth=env["water_depth"])
         else:
-            ds = bem_from_settings(p, n_threads=smk.threads)
+            ds = bem_from_settings(p, n_jobs=smk.threads)
         write_platform_nc(ds, smk.output[0])
 
 
