@@ -143,7 +143,8 @@ def _dims_for(name: str, arr: np.ndarray, dim: str) -> tuple[str, ...]:
     return (dim, *(f"{name}_{i}" for i in range(1, arr.ndim)))
 
 
-def _template(first: Mapping[str, np.ndarray], cases: xr.Dataset, dim: str, n_batches: int) -> xr.Dataset:
+def _template(first: Mapping[str, np.ndarray], cases: xr.Dataset, dim: str, n_batches: int,
+              attrs_of: Callable[[str], Mapping[str, str]] | None = None) -> xr.Dataset:
     n = cases.sizes[dim]
     data: dict[str, Any] = {}
     for name, arr in first.items():
@@ -151,6 +152,11 @@ def _template(first: Mapping[str, np.ndarray], cases: xr.Dataset, dim: str, n_ba
         shape = (n, *arr.shape[1:])
         fill = np.nan if arr.dtype.kind == "f" else 0
         attrs = names.SIM_ATTRS.get(name, {})
+        if attrs_of is not None:
+            try:
+                attrs = {**attrs, **attrs_of(name)}
+            except KeyError:
+                pass
         data[name] = xr.Variable(dims, np.full(shape, fill, dtype=arr.dtype), attrs=dict(attrs))
     data[_DONE] = xr.Variable((_BATCH_DIM,), np.zeros(n_batches, dtype="int8"))
     coords: dict[str, Any] = {dim: cases[dim].values}
@@ -196,6 +202,7 @@ def map_cases(
     log: logging.Logger | None = None,
     client: Any | None = None,
     attrs: Mapping[str, Any] | None = None,
+    attrs_of: Callable[[str], Mapping[str, str]] | None = None,
 ) -> xr.Dataset:
     """Map a pure per-case function over the cases and write a complete Zarr store.
 
@@ -225,6 +232,9 @@ def map_cases(
         Use this client instead of creating one.
     attrs : mapping, optional
         Extra attributes of the final store.
+    attrs_of : callable, optional
+        ``attrs_of(name) -> {"units": ..., ...}`` for output variables beyond the contract's
+        (``KeyError`` for none); contract variables get :data:`moorlife.names.SIM_ATTRS`.
 
     Returns
     -------
@@ -270,7 +280,7 @@ def map_cases(
                 failure = failure or exc
                 continue
             if existing is None:
-                tpl = _template(result, cases, dim, len(slices))
+                tpl = _template(result, cases, dim, len(slices), attrs_of)
                 tpl.attrs.update({"fingerprint": fingerprint, "batch_size": bs})
                 enc = {v: {"chunks": (bs, *tpl[v].shape[1:])} for v in tpl.data_vars if v != _DONE}
                 enc[_DONE] = {"chunks": (1,)}

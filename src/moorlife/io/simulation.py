@@ -11,7 +11,6 @@ from typing import Any
 import xarray as xr
 
 import moorlife
-from moorlife import names
 from moorlife.io import open_zarr
 from moorlife.io.platform import open_platform_nc, read_platform_config
 
@@ -40,8 +39,6 @@ def simulate_store(
     Returns the completed output store (also written to ``output``; resumable through the
     partial store of :mod:`moorlife.parallel`).
     """
-    import zarr
-
     from moorlife import simulate
     from moorlife.config import fingerprint
     from moorlife.parallel import dataset_digest, map_cases
@@ -64,12 +61,6 @@ def simulate_store(
     attrs = {"mooring_system": mooring_system, "mooring_model": model.mooring_kind, "seed": int(seed),
              "duration": float(sim_cfg.get("duration", 3600.0)), "dt": float(sim_cfg.get("dt", 0.1))}
     ds = map_cases(simulate.simulate_batch, cases, output, dim=dim, func_kwargs=kwargs,
-                   batch_size=int(sim_cfg.get("batch_size", 8)), fingerprint=fp, threads=threads, log=log, attrs=attrs)
-    group = zarr.open_group(str(output), mode="r+")
-    for name in ds.data_vars:
-        if name not in names.SIM_ATTRS and name not in names.METOCEAN_VARS:
-            try:
-                group[name].attrs.update(simulate.output_attrs(name))
-            except KeyError:
-                pass
+                   batch_size=int(sim_cfg.get("batch_size", 8)), fingerprint=fp, threads=threads, log=log, attrs=attrs,
+                   attrs_of=simulate.output_attrs)
     return ds
