@@ -23,6 +23,18 @@ include: "workflow/rules/lifecycle.smk"
 include: "workflow/rules/compare.smk"
 
 
+# Light gather rules run on the submit host under a cluster executor.
+localrules:
+    all,
+    metocean_figures,
+    selection_figures,
+    lifecycle_figures,
+    compare,
+    compare_figures,
+    sensitivity_cases,
+    sensitivity,
+
+
 rule all:
     input:
         final_targets(),

@@ -20,8 +20,23 @@ def mooring_row(ms):
     return {k: (v.item() if hasattr(v, "item") else v) for k, v in MOORING.loc[ms].items()}
 
 
+def _outputs(*rule_objs):
+    return [str(f) for r in rule_objs for f in r.output]
+
+
 def final_targets():
-    """Targets of the default run (every stage that exists, for every system)."""
-    return [
-        "results/metocean/hindcast.zarr",
-    ]
+    """Targets of the default run (every stage, for every mooring system)."""
+    shared = _outputs(
+        rules.metocean,
+        rules.metocean_figures,
+        rules.selection,
+        rules.discrete,
+        rules.selection_figures,
+        rules.hydro,
+        rules.compare,
+        rules.compare_figures,
+    )
+    if config["lifecycle"]["sensitivity"]["mooring_system"] in MS_IDS:
+        shared += _outputs(rules.sensitivity)
+    per_ms = _outputs(rules.simulate_cases, rules.simulate_discrete, rules.lifecycle, rules.lifecycle_figures)
+    return shared + expand(per_ms, ms=MS_IDS)
