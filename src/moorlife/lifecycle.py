@@ -430,7 +430,9 @@ def difference_pct(lifecycle: npt.ArrayLike, discrete: npt.ArrayLike) -> np.ndar
         return 100.0 * (lc - np.asarray(discrete, dtype=float)) / lc
 
 
-def recommend(table: pd.DataFrame, *, curves: Sequence[str] = ("sn", "tn"), mass_column: str = "mass_kg_per_m") -> str | None:
+def recommend(
+    table: pd.DataFrame, *, curves: Sequence[str] = ("sn", "tn"), mass_column: str = "mass_kg_per_m"
+) -> str | None:
     """The lightest mooring system that passes the design check on every line and curve.
 
     Parameters
@@ -586,6 +588,74 @@ def _selection_scaling(cases: xr.Dataset) -> tuple[np.ndarray | None, np.ndarray
     return np.asarray(lo, dtype=float)[idx], np.asarray(span, dtype=float)[idx]
 
 
+def _a(long_name: str, units: str = "1") -> dict[str, str]:
+    return {"units": units, "long_name": long_name}
+
+
+def _fit_vars(out: xr.Dataset, model: rbf.RBFModel, x_train: np.ndarray, ids: np.ndarray) -> xr.Dataset:
+    """Shape parameters, transforms and leave-one-out residuals of the fit."""
+    out = out.assign_coords(train=("train", ids))
+    out["shape_parameter"] = ("output", model.shape, _a("RBF shape parameter q0 (normalised distance)"))
+    out["loo_rmse"] = ("output", np.sqrt(np.mean(model.loo_error**2, axis=0)),
+                       _a("Rippa leave-one-out RMSE (transformed space)"))
+    out["log_transform"] = ("output", model.log_output.astype(np.int8), _a("1 if interpolated as log10"))
+    out["train_points"] = (("train", "metocean_var"), x_train, _a("training sea states (physical units)"))
+    out["loo_error"] = (("train", "output"), model.loo_error, _a("leave-one-out residual per training state"))
+    return out
+
+
+def _validation_vars(out: xr.Dataset, model: rbf.RBFModel, x_val: np.ndarray, y_val: np.ndarray,
+                     ids: np.ndarray) -> xr.Dataset:
+    """Rebuilt vs simulated values on the validation states and their metrics."""
+    pv = rbf.predict_rbf(model, x_val)
+    for k, v in validation_metrics(pv, y_val).items():
+        out[f"validation_{k}"] = ("output", v, _a(f"validation {k} on {len(ids)} states"))
+    out = out.assign_coords(validate=("validate", ids))
+    out["validate_points"] = (("validate", "metocean_var"), x_val, _a("validation sea states"))
+    out["validation_predicted"] = (("validate", "output"), pv, _a("rebuilt value at validation states"))
+    out["validation_simulated"] = (("validate", "output"), y_val, _a("simulated value at validation states"))
+    return out
+
+
+def _damage_vars(out: xr.Dataset, n_hours: int, fs: fatigue.FatigueSettings) -> xr.Dataset:
+    """Life-cycle damage, yearly and design-life damage, fatigue life and design check per line and curve."""
+    curves = [c for c in names.CURVES if DAMAGE_VARS[c] in out]
+    if not curves:
+        return out
+    hourly = [np.clip(out[DAMAGE_VARS[c]].transpose(names.TIME, names.LINE).values, 0, None) for c in curves]
+    total = np.stack([life_damage(h) for h in hourly])  # (curve, line)
+    py = damage_per_year(total, n_hours)
+    checks = [design_check(py[i], fs.design_life, c, fs) for i, c in enumerate(curves)]
+    cd = (names.CURVE, names.LINE)
+    out = out.assign_coords({names.CURVE: curves})
+    out["lifecycle_damage"] = (cd, total, _a(f"damage summed over the {n_hours} hindcast hours"))
+    out["damage_per_year"] = (cd, py, _a("life-cycle damage per year", "year-1"))
+    for key, dims, text, units in (
+        ("design_life_damage", cd, f"damage over the {fs.design_life:g} year design life", "1"),
+        ("fatigue_life_years", cd, "characteristic fatigue life (D = 1)", "year"),
+        ("design_fatigue_factor", (names.CURVE,), "design fatigue factor (DNVGL-OS-E301 or API)", "1"),
+        ("damage_ratio", (names.CURVE,), "dF: adjacent-line over most-damaged-line damage", "1"),
+        ("utilisation", cd, "DFF x design-life damage (passes if <= 1)", "1"),
+    ):
+        out[key] = (dims, np.stack([c[key] for c in checks]), _a(text, units))
+    passes = np.stack([c["passes"] for c in checks]).astype(np.int8)
+    out["passes"] = (cd, passes, _a("1 if DFF x design-life damage <= 1"))
+    out.attrs["design_life_years"] = float(fs.design_life)
+    return out
+
+
+def _uncertainty_vars(out: xr.Dataset, model: rbf.RBFModel, hp: np.ndarray, scale: np.ndarray,
+                      n_suggest: int) -> xr.Dataset:
+    """Error indicator per hour and the adaptive-selection suggestions."""
+    ind, dist = error_indicator(model, hp, scale)
+    out["nearest_distance"] = (names.TIME, dist, _a("normalised distance to the nearest training state"))
+    out["error_indicator"] = (names.TIME, ind, _a("LOO error of the nearest training state x relative distance"))
+    picks = suggest_states(model, hp, ind, n_suggest)
+    out = out.assign_coords(suggestion=("suggestion", np.arange(picks.size)))
+    out["suggested_hour"] = ("suggestion", picks, _a("hindcast index to simulate next (adaptive selection)"))
+    return out
+
+
 def reconstruct_lifecycle(
     hindcast: xr.Dataset,
     cases: xr.Dataset,
@@ -656,72 +726,24 @@ def reconstruct_lifecycle(
             log.warning("%d rebuilt hourly damages are negative (RBF undershoot); clipped to 0 in the sums",
                         int(neg.sum()))
 
-    o = "output"
-    out = out.assign_coords({o: labels})
-    out["shape_parameter"] = (o, model.shape, {"units": "1", "long_name": "RBF shape parameter q0 (normalised distance)"})
-    out["loo_rmse"] = (o, np.sqrt(np.mean(model.loo_error**2, axis=0)),
-                       {"units": "1", "long_name": "Rippa leave-one-out RMSE (transformed space)"})
-    out["log_transform"] = (o, model.log_output.astype(np.int8), {"units": "1", "long_name": "1 if interpolated as log10"})
-    out = out.assign_coords(train=("train", common[train]), metocean_var=("metocean_var", list(names.METOCEAN_VARS)))
-    out["train_points"] = (("train", "metocean_var"), x[train], {"units": "1", "long_name": "training sea states (physical units)"})
-    out["loo_error"] = (("train", o), model.loo_error, {"units": "1", "long_name": "leave-one-out residual per training state"})
+    out = out.assign_coords(output=labels, metocean_var=list(names.METOCEAN_VARS))
+    out = _fit_vars(out, model, x[train], common[train])
     if valid.any():
-        pv = rbf.predict_rbf(model, x[valid])
-        met = validation_metrics(pv, y[valid])
-        for k, v in met.items():
-            out[f"validation_{k}"] = (o, v, {"units": "1", "long_name": f"validation {k} on {int(valid.sum())} states"})
-        out = out.assign_coords(validate=("validate", common[valid]))
-        out["validate_points"] = (("validate", "metocean_var"), x[valid], {"units": "1", "long_name": "validation sea states"})
-        out["validation_predicted"] = (("validate", o), pv, {"units": "1", "long_name": "rebuilt value at validation states"})
-        out["validation_simulated"] = (("validate", o), y[valid], {"units": "1", "long_name": "simulated value at validation states"})
+        out = _validation_vars(out, model, x[valid], y[valid], common[valid])
         if compare_transforms and is_dmg.any():
             alt = fit_outputs(x[train], y[train][:, is_dmg], [c for c, d in zip(cols, is_dmg) if d], settings,
                               lo=lo, span=span, log_damage=not settings.log_damage)
             am = validation_metrics(rbf.predict_rbf(alt, x[valid]), y[valid][:, is_dmg])
+            other = "linear" if settings.log_damage else "log10"
             for k in ("r", "rmse", "sum_error"):
                 arr = np.full(len(cols), np.nan)
                 arr[is_dmg] = am[k]
-                out[f"validation_{k}_other_transform"] = (o, arr, {
-                    "units": "1",
-                    "long_name": f"validation {k} with damage {'linear' if settings.log_damage else 'log10'}-interpolated"})
-
-    # life-cycle damage per line and curve
+                text = f"validation {k}, damage {other}-interpolated"
+                out[f"validation_{k}_other_transform"] = ("output", arr, _a(text))
     n_hours = hindcast.sizes[names.TIME]
-    fs = fatigue.fatigue_settings(fatigue_cfg)
-    curves = [c for c in names.CURVES if DAMAGE_VARS[c] in out]
-    if curves:
-        total = np.stack([life_damage(np.clip(out[DAMAGE_VARS[c]].transpose(names.TIME, names.LINE).values, 0, None))
-                          for c in curves])  # (curve, line)
-        py = damage_per_year(total, n_hours)
-        cd = (names.CURVE, names.LINE)
-        out = out.assign_coords({names.CURVE: curves})
-        out["lifecycle_damage"] = (cd, total, {"units": "1", "long_name": f"damage summed over the {n_hours} hindcast hours"})
-        out["damage_per_year"] = (cd, py, {"units": "year-1", "long_name": "life-cycle damage per year"})
-        checks = [design_check(py[i], fs.design_life, c, fs) for i, c in enumerate(curves)]
-        out["design_life_damage"] = (cd, np.stack([c["design_life_damage"] for c in checks]),
-                                     {"units": "1", "long_name": f"damage over the {fs.design_life} year design life"})
-        out["fatigue_life_years"] = (cd, np.stack([c["fatigue_life_years"] for c in checks]),
-                                     {"units": "year", "long_name": "characteristic fatigue life (D = 1)"})
-        out["design_fatigue_factor"] = (names.CURVE, np.stack([c["design_fatigue_factor"] for c in checks]),
-                                        {"units": "1", "long_name": "design fatigue factor (DNVGL-OS-E301 or API)"})
-        out["damage_ratio"] = (names.CURVE, np.stack([c["damage_ratio"] for c in checks]),
-                               {"units": "1", "long_name": "dF: adjacent-line over most-damaged-line damage"})
-        out["utilisation"] = (cd, np.stack([c["utilisation"] for c in checks]),
-                              {"units": "1", "long_name": "DFF x design-life damage (passes if <= 1)"})
-        out["passes"] = (cd, np.stack([c["passes"] for c in checks]).astype(np.int8),
-                         {"units": "1", "long_name": "1 if DFF x design-life damage <= 1"})
-        out.attrs["design_life_years"] = float(fs.design_life)
-
-    # where the RBF is least certain, and what to simulate next
-    scale = np.std(y[train], axis=0)
-    if model.log_output.any():
-        scale = np.where(model.log_output, 1.0, scale)
-    ind, dist = error_indicator(model, hp, scale)
-    out["nearest_distance"] = (names.TIME, dist, {"units": "1", "long_name": "normalised distance to the nearest training state"})
-    out["error_indicator"] = (names.TIME, ind, {"units": "1", "long_name": "LOO error of the nearest training state x relative distance"})
-    picks = suggest_states(model, hp, ind, n_suggest)
-    out = out.assign_coords(suggestion=("suggestion", np.arange(picks.size)))
-    out["suggested_hour"] = ("suggestion", picks, {"units": "1", "long_name": "hindcast index to simulate next (adaptive selection)"})
+    out = _damage_vars(out, n_hours, fatigue.fatigue_settings(fatigue_cfg))
+    scale = np.where(model.log_output, 1.0, np.std(y[train], axis=0))
+    out = _uncertainty_vars(out, model, hp, scale, n_suggest)
     out.attrs.update({
         "n_hours": int(n_hours),
         "n_years": float(n_hours / HOURS_PER_YEAR),
@@ -832,7 +854,8 @@ def summary_table(
                     "utilisation": float(lc["utilisation"].sel(sel)),
                     "passes": bool(lc["passes"].sel(sel)),
                     "surge_mpm_max": float(lc["surge_mpm"].max()) if "surge_mpm" in lc else np.nan,
-                    "tension_mpm_max": float(lc["tension_mpm"].sel({names.LINE: line}).max()) if "tension_mpm" in lc else np.nan,
+                    "tension_mpm_max": (float(lc["tension_mpm"].sel({names.LINE: line}).max())
+                                        if "tension_mpm" in lc else np.nan),
                 })
     return pd.DataFrame(rows)
 
@@ -897,7 +920,9 @@ def corrosion_evolution(
             ultimate=settings.ultimate, yield_=settings.yield_,
         )
 
-    ages, cum = fatigue.lifetime_damage_with_corrosion(lambda a: per_year * factor(a), years, step=settings.corrosion_step)
+    ages, cum = fatigue.lifetime_damage_with_corrosion(
+        lambda a: per_year * factor(a), years, step=settings.corrosion_step
+    )
     return {"years": ages, "corroded": cum, "intact": per_year * ages, "factor": np.asarray(factor(ages[:-1]))}
 
 

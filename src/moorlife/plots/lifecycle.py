@@ -221,10 +221,10 @@ def offsets_tensions(dists: Mapping[str, Mapping[str, xr.DataArray]]) -> Figure:
     for ax, data, lab in ((ax1, off, "horizontal offset MPM (m)"), (ax2, ten, "largest line tension MPM (kN)")):
         ax.boxplot(data, whis=(1, 99), showfliers=False)
         ax.plot(np.arange(1, len(data) + 1), [np.max(v) for v in data], "v", color="tab:red", label="hindcast maximum")
+        ax.legend(fontsize=7, loc="upper left")
         ax.set_xticks(np.arange(1, len(systems) + 1), systems)
         ax.set_ylabel(lab)
         ax.grid(axis="y", alpha=0.3)
-    ax1.legend(fontsize=7)
     fig.suptitle("rebuilt hourly extremes over the hindcast (box: quartiles, whiskers 1-99 %)")
     return fig
 
@@ -268,6 +268,8 @@ def seed_spread(df: pd.DataFrame, title: str = "") -> Figure:
             ax.annotate(f"mean {y.mean():.2f} y\nspread {np.ptp(y):.2f} y", (k, y.max()), fontsize=7,
                         textcoords="offset points", xytext=(0, 5), ha="center")
         ax.set_xticks(range(sub["line"].nunique()), sorted(set(sub["line"])))
+        if sub["life_years"].max() > 10 * sub["life_years"].min():
+            ax.set_yscale("log")
         ax.set_ylabel("fatigue life if the state repeats (years)")
         ax.set_title(CURVE_LABEL[c])
         ax.grid(axis="y", alpha=0.3)
