@@ -166,7 +166,6 @@ def test_prediction_independent_of_chunking():
 
 def test_prediction_independent_of_thread_counts():
     import numba
-    from threadpoolctl import threadpool_limits
 
     x = _sea_states(300, seed=21)
     y = np.column_stack([np.sin(x[:, 2]) * x[:, 3], x[:, 0] ** 0.5, x[:, 2] ** 2])
@@ -177,8 +176,7 @@ def test_prediction_independent_of_thread_counts():
         outs = []
         for n in (1, min(2, numba.config.NUMBA_NUM_THREADS)):
             numba.set_num_threads(n)
-            with threadpool_limits(limits=n):
-                outs.append(rbf.predict_rbf(model, xq, chunk_rows=1000))
+            outs.append(rbf.predict_rbf(model, xq, chunk_rows=1000))
     finally:
         numba.set_num_threads(before)
     np.testing.assert_array_equal(outs[0], outs[1])
