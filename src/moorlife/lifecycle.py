@@ -505,7 +505,8 @@ def _typical_spacing(model: rbf.RBFModel) -> float:
 
 
 def suggest_states(
-    model: rbf.RBFModel, points: npt.ArrayLike, indicator: npt.ArrayLike, n: int
+    model: rbf.RBFModel, points: npt.ArrayLike, indicator: npt.ArrayLike, n: int,
+    distance: npt.ArrayLike | None = None,
 ) -> np.ndarray:
     """Adaptive selection: the ``n`` hours to simulate next, greedily, most uncertain first.
 
@@ -520,6 +521,8 @@ def suggest_states(
     indicator : array_like, shape (n_hours,)
         From :func:`error_indicator`.
     n : int
+    distance : array_like, shape (n_hours,), optional
+        Distance to the nearest training state (from :func:`error_indicator`); computed if omitted.
 
     Returns
     -------
@@ -528,7 +531,7 @@ def suggest_states(
     """
     z = rbf.normalise(points, model.space)
     ind = np.asarray(indicator, dtype=float)
-    d0, _ = rbf.nearest_centre(model, points)
+    d0 = rbf.nearest_centre(model, points)[0] if distance is None else np.asarray(distance, dtype=float)
     dset = d0.copy()
     picks: list[int] = []
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -650,7 +653,7 @@ def _uncertainty_vars(out: xr.Dataset, model: rbf.RBFModel, hp: np.ndarray, scal
     ind, dist = error_indicator(model, hp, scale)
     out["nearest_distance"] = (names.TIME, dist, _a("normalised distance to the nearest training state"))
     out["error_indicator"] = (names.TIME, ind, _a("LOO error of the nearest training state x relative distance"))
-    picks = suggest_states(model, hp, ind, n_suggest)
+    picks = suggest_states(model, hp, ind, n_suggest, distance=dist)
     out = out.assign_coords(suggestion=("suggestion", np.arange(picks.size)))
     out["suggested_hour"] = ("suggestion", picks, _a("hindcast index to simulate next (adaptive selection)"))
     return out
