@@ -20,7 +20,8 @@ west-north-west seas), so that the timing and the transform comparison are meani
 3. bluemath-tk RBF (Gaussian, its own sigma search, directions as u/v, row_chunks for the
    prediction) on --bluemath-outputs outputs; its time is also scaled to 16 outputs.
 4. Validation on the 225 states: r and RMSE per output; damage interpolated linearly vs as
-   log10 (the lifecycle default is chosen from this and from the real simulations).
+   log10 (the lifecycle default is chosen from this and from the real simulations); and the
+   error of the life damage (sum over every hour) against the true sum of the surfaces.
 """
 
 from __future__ import annotations
@@ -169,6 +170,9 @@ def main() -> None:
         print(f"{lab:<18}" + "".join(f"{res[k][0][j]:>14.4f} ({res[k][1][j]:9.3g})" for k in variants))
     for k, (r, _) in res.items():
         print(f"{k}: min r over damage {r[is_dmg].min():.4f}, over all {r.min():.4f}")
+    y_all, _ = responses(pts)
+    life_err = 100 * (pred[:, is_dmg].sum(axis=0) / y_all[:, is_dmg].sum(axis=0) - 1)
+    print(f"rippa+log: life damage over all {n} hours vs the true sum: {np.round(life_err, 2)} %")
     tot_true = y_val[:, is_dmg].sum(axis=0)
     for k, m in variants.items():
         p = rbf.predict_rbf(m, pts[valid])[:, is_dmg].sum(axis=0)
