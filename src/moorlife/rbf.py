@@ -333,19 +333,23 @@ def _min_dist(zq: np.ndarray, zc_t: np.ndarray, isdir: np.ndarray, dmin: np.ndar
     n, d = zq.shape
     m = zc_t.shape[1]
     for i in nb.prange(n):
-        best = np.inf
-        ib = 0
-        for j in range(m):
-            s = 0.0
-            for k in range(d):
-                t = abs(zq[i, k] - zc_t[k, j])
-                if isdir[k]:
+        row = np.zeros(m)
+        for k in range(d):  # dimension-outer, like _sq_dist_block, so the j loop vectorises
+            a = zq[i, k]
+            if isdir[k]:
+                for j in range(m):
+                    t = abs(a - zc_t[k, j])
                     t = min(t, 2.0 - t)
-                s += t * t
-            if s < best:
-                best = s
+                    row[j] += t * t
+            else:
+                for j in range(m):
+                    t = a - zc_t[k, j]
+                    row[j] += t * t
+        ib = 0
+        for j in range(1, m):
+            if row[j] < row[ib]:
                 ib = j
-        dmin[i] = math.sqrt(best)
+        dmin[i] = math.sqrt(row[ib])
         imin[i] = ib
 
 
