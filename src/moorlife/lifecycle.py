@@ -37,6 +37,8 @@ from moorlife import fatigue, names, rbf
 
 __all__ = [
     "HOURS_PER_YEAR",
+    "DEFAULT_OUTPUTS",
+    "DAMAGE_VARS",
     "RBFSettings",
     "rbf_settings",
     "output_columns",
