@@ -26,7 +26,7 @@ pytestmark = pytest.mark.workflow
 ROOT = Path(__file__).resolve().parents[1]
 SNAKEMAKE = str(Path(sys.executable).parent / "snakemake")
 OVERLAYS = ["config/quick.yaml", "tests/data/tiny.yaml"]
-COPY = ["Snakefile", "workflow", "config", "tests/data"]
+COPY = ["Snakefile", "workflow", "config", "envs", "tests/data"]
 
 
 def copy_repo(dst: Path) -> Path:
