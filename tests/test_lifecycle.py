@@ -288,6 +288,15 @@ def test_stores_comparison_and_sensitivity_end_to_end(tmp_path):
     assert rec["recommended"] == "MS2"
     r = csv[(csv.mooring_system == "MS1") & (csv.line == "M2") & (csv.curve == "sn")].iloc[0]
     assert r.difference_pct == pytest.approx(100 * (5e-6 - 1e-6) / 5e-6)
+    # judged on the corroding chain, the verdict can only get stricter
+    corr = lifecycle.summary_table({ms: open_zarr(p) for ms, p in zip(systems, lcs)},
+                                   {ms: lifecycle.discrete_damage_table(open_zarr(tmp_path / "bins.zarr"),
+                                                                        open_zarr(tmp_path / f"{ms}_disc.zarr"), 1500)
+                                    for ms in systems},
+                                   pd.read_csv(tmp_path / "ms.tsv", sep="\t").set_index("mooring_system"),
+                                   corrosion=fatigue.fatigue_settings({}))
+    assert np.all(corr["utilisation_corroded"] > corr["utilisation"])
+    assert not np.any(corr["passes"] & ~table["passes"])
     iol.compare_figures(tmp_path / "summary.csv", tmp_path / "rec.yaml", lcs,
                         {k: tmp_path / f"{k}.png" for k in ("damage_mass", "difference", "offsets", "recommendation")},
                         systems=systems)

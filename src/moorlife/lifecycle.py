@@ -801,6 +801,7 @@ def summary_table(
     *,
     seed_cv: Mapping[str, float] | None = None,
     coverage: float = 1.0,
+    corrosion: fatigue.FatigueSettings | None = None,
 ) -> pd.DataFrame:
     """One row per (mooring system, line, curve): the comparison table of the study.
 
@@ -817,6 +818,10 @@ def summary_table(
         the validation sum error for the fatigue-life band.
     coverage : float
         Coverage factor of the band (:func:`life_band`).
+    corrosion : moorlife.fatigue.FatigueSettings, optional
+        If given, the verdict uses the design-life damage of the corroding chain
+        (:func:`corrosion_evolution` with its corrosion rate and step) instead of the intact one;
+        the columns ``design_life_damage_corroded`` and ``utilisation_corroded`` are added.
 
     Returns
     -------
@@ -824,7 +829,7 @@ def summary_table(
         Columns ``mooring_system, line, curve, mass_kg_per_m, link_diameter_mm, lifecycle_damage,
         damage_per_year, design_life_damage, discrete_damage, difference_pct, fatigue_life_years,
         fatigue_life_low, fatigue_life_high, design_fatigue_factor, utilisation, passes,
-        surge_mpm_max, tension_mpm_max``.
+        surge_mpm_max, tension_mpm_max`` (+ the corroded columns).
     """
     rows = []
     for ms, lc in lifecycles.items():
@@ -841,7 +846,7 @@ def summary_table(
                 low, high = life_band(life, np.hypot(cv, rel_err), coverage)
                 total = float(lc["lifecycle_damage"].sel(sel))
                 disc = float(dd["discrete_damage"].sel(sel)) if dd is not None else np.nan
-                rows.append({
+                row = {
                     "mooring_system": ms,
                     "line": line,
                     "curve": curve,
@@ -861,7 +866,17 @@ def summary_table(
                     "surge_mpm_max": float(lc["surge_mpm"].max()) if "surge_mpm" in lc else np.nan,
                     "tension_mpm_max": (float(lc["tension_mpm"].sel({names.LINE: line}).max())
                                         if "tension_mpm" in lc else np.nan),
-                })
+                }
+                if corrosion is not None:
+                    life_years = float(lc.attrs.get("design_life_years", corrosion.design_life))
+                    mean_t = (float(lc["tension_mean"].sel({names.LINE: line}).mean()) if "tension_mean" in lc
+                              else float(row0["pretension_kN"]) * 1e3)
+                    ev = corrosion_evolution(row["damage_per_year"], float(row0["link_diameter_mm"]) * 1e-3, life_years,
+                                             curve=curve, settings=corrosion, mean_tension=mean_t)
+                    row["design_life_damage_corroded"] = float(ev["corroded"][-1])
+                    row["utilisation_corroded"] = row["design_fatigue_factor"] * row["design_life_damage_corroded"]
+                    row["passes"] = bool(row["utilisation_corroded"] <= 1.0)
+                rows.append(row)
     return pd.DataFrame(rows)
 
 

@@ -25,6 +25,7 @@ rule compare:
     params:
         systems=MS_IDS,
         lifecycle=config["lifecycle"],
+        fatigue=config["fatigue"],
     conda:
         "../../envs/moorlife.yaml"
     log:

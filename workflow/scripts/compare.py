@@ -9,7 +9,8 @@ def main(smk) -> None:
         i = smk.input
         compare_outputs(
             list(i.lifecycle), list(i.discrete), i.bins, i.mooring, smk.output.summary, smk.output.recommendation,
-            systems=smk.params.systems, lifecycle_cfg=smk.params.lifecycle, seeds=(list(i.seeds) or [None])[0],
+            systems=smk.params.systems, lifecycle_cfg=smk.params.lifecycle, fatigue_cfg=smk.params.fatigue,
+            seeds=(list(i.seeds) or [None])[0],
         )
 
 

@@ -114,6 +114,7 @@ def compare_outputs(
     *,
     systems: Sequence[str],
     lifecycle_cfg: Mapping[str, Any],
+    fatigue_cfg: Mapping[str, Any] | None = None,
     seeds: PathLike | None = None,
 ) -> pd.DataFrame:
     """``results/comparison/summary.csv`` and the recommendation across mooring systems."""
@@ -126,16 +127,21 @@ def compare_outputs(
         lc = open_zarr(lp, load=False)
         lcs[ms] = lc.drop_vars([v for v in lc.data_vars if names.TIME in lc[v].dims and v not in ("surge_mpm", "tension_mpm")]).load()
         dds[ms] = lifecycle.discrete_damage_table(states, open_zarr(dp), lc.attrs["n_hours"])
+    from moorlife import fatigue
+
     cv = _seed_cv(seeds)
-    table = lifecycle.summary_table(lcs, dds, mooring, seed_cv=cv,
+    rec_cfg = dict(lifecycle_cfg.get("recommendation", {}))
+    corr = fatigue.fatigue_settings(fatigue_cfg) if rec_cfg.get("corrosion", False) else None
+    table = lifecycle.summary_table(lcs, dds, mooring, seed_cv=cv, corrosion=corr,
                                     coverage=float(lifecycle_cfg.get("uncertainty", {}).get("coverage", 1.0)))
-    curves = list(lifecycle_cfg.get("recommendation", {}).get("curves", ["sn", "tn"]))
+    curves = list(rec_cfg.get("curves", ["sn", "tn"]))
     rec = lifecycle.recommend(table, curves=curves)
     _write_csv(table, summary_csv)
     info = {
         "recommended": rec,
         "curves": curves,
-        "rule": f"lightest system with DFF x design-life damage <= 1 on every line for curves {curves}",
+        "rule": (f"lightest system with DFF x design-life damage <= 1 on every line for curves {curves}"
+                 + (" (corroding chain)" if corr is not None else "")),
         "seed_cv": cv,
         "max_utilisation": {ms: float(g["utilisation"].max()) for ms, g in table[table.curve.isin(curves)].groupby("mooring_system")},
         "mean_difference_pct": {f"{c}/{ln}": float(g["difference_pct"].mean()) for (c, ln), g in table.groupby(["curve", "line"])},
