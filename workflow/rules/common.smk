@@ -2,6 +2,8 @@
 import os
 
 from moorlife.config import validate_config
+from moorlife.hydro import bem_settings
+from moorlife.io.platform import read_platform_config
 from moorlife.io import read_mooring_systems, read_yaml
 
 # Validate before any work: unknown keys, wrong types and bad values stop here, naming the key.
@@ -18,6 +20,23 @@ MS_IDS = list(MOORING.index)
 def mooring_row(ms):
     """The mooring-system table row of one system, as a plain dict (passed as params)."""
     return {k: (v.item() if hasattr(v, "item") else v) for k, v in MOORING.loc[ms].items()}
+
+
+def _hindcast_file(wildcards):
+    """The hindcast file when it is the source (so editing it reruns the rule), else nothing."""
+    h = config["hindcast"]
+    return [h["path"]] if h["source"] == "file" and h.get("path") else []
+
+
+def _hydro_inputs(wildcards):
+    """The WAMIT files when they are the source (so editing them reruns the rule), else nothing."""
+    if config["hydro"]["source"] != "wamit":
+        return []
+    prefix = config["hydro"]["wamit_prefix"]
+    if not prefix:
+        raise ValueError("config hydro.wamit_prefix is required when hydro.source is 'wamit'")
+    exts = ["1", "3", "hst"] + (["12d"] if os.path.exists(f"{prefix}.12d") else [])
+    return [f"{prefix}.{e}" for e in exts]
 
 
 def _outputs(*rule_objs):

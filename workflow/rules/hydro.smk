@@ -4,18 +4,6 @@
 # read here, at parse time, so editing e.g. the Ct table does not rerun the BEM.
 # Fine mesh (2 m panels, 3-fold symmetry, 50 frequencies x 24 headings): about 25 min on
 # 2 cores; the coarse setting (hydro.mesh.resolution: coarse, config/quick.yaml) about 1 min.
-from moorlife.hydro import bem_settings
-from moorlife.io.platform import read_platform_config
-
-
-def _hydro_inputs(wildcards):
-    if config["hydro"]["source"] != "wamit":
-        return []
-    prefix = config["hydro"]["wamit_prefix"]
-    if not prefix:
-        raise ValueError("config hydro.wamit_prefix is required when hydro.source is 'wamit'")
-    exts = [".1", ".3", ".hst"] + ([".12d"] if os.path.exists(prefix + ".12d") else [])
-    return [prefix + e for e in exts]
 
 
 rule hydro:

@@ -2,12 +2,6 @@
 # BiMEP-like synthetic hindcast; `hindcast.source: file` loads an ERA5/NORA3/mapped file instead.
 
 
-def _hindcast_file(wildcards):
-    """The hindcast file when it is the source (so editing it reruns the rule), else nothing."""
-    h = config["hindcast"]
-    return [h["path"]] if h["source"] == "file" and h.get("path") else []
-
-
 rule metocean:
     input:
         _hindcast_file,
@@ -16,6 +10,8 @@ rule metocean:
     params:
         hindcast=config["hindcast"],
         seed=config["seed"],
+    conda:
+        "../../envs/moorlife.yaml"
     log:
         "logs/metocean/hindcast.log",
     script:
@@ -29,6 +25,8 @@ rule metocean_figures:
         wind_rose=report("results/figures/wind_rose.png", category="Metocean", caption="../report/wind_rose.rst"),
         wave_rose=report("results/figures/wave_rose.png", category="Metocean", caption="../report/wave_rose.rst"),
         hs_tp=report("results/figures/hs_tp_scatter.png", category="Metocean", caption="../report/hs_tp_scatter.rst"),
+    conda:
+        "../../envs/moorlife.yaml"
     log:
         "logs/metocean/figures.log",
     script:

@@ -48,8 +48,12 @@ rule selection_figures:
         cases="results/selection/cases.zarr",
         discrete="results/selection/discrete.zarr",
     output:
-        cloud=report("results/figures/selection_cloud.png", category="Selection"),
-        discrete=report("results/figures/discrete_states.png", category="Selection"),
+        cloud=report(
+            "results/figures/selection_cloud.png", caption="../report/selection_cloud.rst", category="Selection"
+        ),
+        discrete=report(
+            "results/figures/discrete_states.png", caption="../report/discrete_states.rst", category="Selection"
+        ),
     resources:
         mem_mb=1000,
     conda:

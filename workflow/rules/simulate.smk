@@ -20,6 +20,8 @@ rule simulate_cases:
         fatigue=config["fatigue"],
         statistics=config.get("statistics", {}),
     threads: workflow.cores
+    conda:
+        "../../envs/moorlife.yaml"
     log:
         "logs/{ms}/simulate_cases.log",
     script:
@@ -43,6 +45,8 @@ rule simulate_discrete:
         fatigue=config["fatigue"],
         statistics=config.get("statistics", {}),
     threads: workflow.cores
+    conda:
+        "../../envs/moorlife.yaml"
     log:
         "logs/{ms}/simulate_discrete.log",
     script:
