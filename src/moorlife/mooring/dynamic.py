@@ -40,7 +40,7 @@ fairleads held still.
 
 Validation against MoorDyn (``tests/test_mooring_dynamic.py``, MS2 with friction and MS5
 without, 5 m surge at 100 s + 1 m at 10 s): mean, standard deviation and range of fairlead
-tension within 3 % at 0.05 s. Cost: ``benchmarks/bench_mooring.py``, ``benchmarks/mooring.md``.
+tension within 3 % at 0.05 s. Cost: ``benchmarks/bench_mooring.py``, ``benchmarks/README.md``.
 
 The fairlead force returned to the platform is the net force of the line's end node
 (minus its inertia), as MoorDyn's coupled-point force: ``-(T + c dl/dt) t_end`` plus the end
