@@ -42,7 +42,8 @@ def copy_repo(dst: Path) -> Path:
 
 def smk(workdir: Path, *args: str, cores: int = 2, check: bool = True, overlays=OVERLAYS,
         timeout: float = 900) -> subprocess.CompletedProcess:
-    cmd = [SNAKEMAKE, "--cores", str(cores), "--configfile", *overlays, *args]
+    # targets and flags first: --configfile takes every following word as a file
+    cmd = [SNAKEMAKE, "--cores", str(cores), *args, "--configfile", *overlays]
     env = {**os.environ, "PYTHONWARNINGS": "ignore"}
     env.pop("DASK_SCHEDULER_ADDRESS", None)
     res = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True, timeout=timeout, env=env)
@@ -148,7 +149,7 @@ def test_sigkill_during_fanout_then_resume_is_bit_identical(study, tmp_path):
     (work / "slow.yaml").write_text("simulation:\n  batch_size: 1\n")
     overlays = [*OVERLAYS, "slow.yaml"]
     part = mio.partial_path(work / target)
-    cmd = [SNAKEMAKE, "--cores", "2", "--configfile", *overlays, target]
+    cmd = [SNAKEMAKE, "--cores", "2", target, "--configfile", *overlays]
     proc = subprocess.Popen(cmd, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True)
     deadline = time.time() + 600
