@@ -112,3 +112,13 @@ def test_fingerprint_is_stable_and_sensitive():
     a = fingerprint({"a": 1, "b": [1.0, 2.0]}, "MS1")
     assert a == fingerprint({"b": [1.0, 2.0], "a": 1}, "MS1")
     assert a != fingerprint({"a": 1, "b": [1.0, 2.0000001]}, "MS1")
+
+
+def test_readme_config_reference_is_current(schema):
+    from moorlife.config import schema_table
+
+    readme = (ROOT / "README.md").read_text()
+    start, end = "<!-- config-reference:start -->\n", "\n<!-- config-reference:end -->"
+    assert start in readme, "README.md lacks the configuration reference"
+    block = readme[readme.index(start) + len(start): readme.index(end)]
+    assert block == schema_table(schema), "README configuration reference is stale: regenerate it"

@@ -21,6 +21,7 @@ __all__ = [
     "iter_schema_leaves",
     "fingerprint",
     "deep_merge",
+    "schema_table",
 ]
 
 
@@ -117,3 +118,18 @@ def fingerprint(*parts: Any) -> str:
     """A SHA-256 hex digest of JSON-serialisable parts (keys sorted, floats by repr)."""
     text = json.dumps(parts, sort_keys=True, default=str, separators=(",", ":"))
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def schema_table(schema: Mapping[str, Any]) -> str:
+    """A Markdown table of every config key: dotted key, default and description.
+
+    The README's configuration reference is this table; a test keeps them equal.
+    """
+    rows = ["| key | default | description |", "|---|---|---|"]
+    for key, sub in iter_schema_leaves(schema):
+        if sub.get("type") == "object" and "properties" in sub:
+            continue
+        default = json.dumps(sub.get("default"), separators=(", ", ": "))
+        text = " ".join(str(sub.get("description", "")).split()).replace("|", "\\|")
+        rows.append(f"| `{key}` | `{default}` | {text} |")
+    return "\n".join(rows)
