@@ -155,6 +155,7 @@ def test_workers_run_single_threaded(client):
     hosts = {addr.split("://")[1].rsplit(":", 1)[0] for addr in env}
     assert hosts == {"127.0.0.1"}, "workers must bind to loopback only"
     assert client.scheduler_info()["address"].startswith("tcp://127.0.0.1:")
+    assert client.dashboard_link.startswith("http://127.0.0.1:"), client.dashboard_link
 
 
 def test_dataset_digest_sensitive_to_values(cases):

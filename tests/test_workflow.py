@@ -41,11 +41,12 @@ def copy_repo(dst: Path) -> Path:
 
 
 def smk(workdir: Path, *args: str, cores: int = 2, check: bool = True, overlays=OVERLAYS,
-        timeout: float = 900) -> subprocess.CompletedProcess:
+        timeout: float = 900, env_extra: dict | None = None) -> subprocess.CompletedProcess:
     # targets and flags first: --configfile takes every following word as a file
     cmd = [SNAKEMAKE, "--cores", str(cores), *args, "--configfile", *overlays]
     env = {**os.environ, "PYTHONWARNINGS": "ignore"}
     env.pop("DASK_SCHEDULER_ADDRESS", None)
+    env.update(env_extra or {})
     res = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True, timeout=timeout, env=env)
     if check and res.returncode != 0:
         raise AssertionError(f"snakemake {' '.join(args)} failed ({res.returncode}):\n{res.stderr[-6000:]}")
@@ -84,6 +85,8 @@ def test_full_run_then_noop(study):
     again = smk(study)
     assert stores(study) == built, "a rerun must not rebuild anything"
     assert "Nothing to be done" in again.stdout + again.stderr
+    moved = smk(study, "-n", env_extra={"DASK_SCHEDULER_ADDRESS": "tcp://127.0.0.1:1"})
+    assert "Nothing to be done" in moved.stdout + moved.stderr, "a scheduler address change must rerun nothing"
 
 
 def test_lint_clean(tmp_path):
