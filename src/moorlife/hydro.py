@@ -1262,7 +1262,7 @@ def load_platform_model(
     *,
     kernel_duration: float = 80.0,
     kernel_dt: float = 0.2,
-    ss_order: int = 30,
+    ss_order: int | None = 30,
     source: str = "platform.yaml",
 ) -> PlatformModel:
     """Build the simulator's :class:`PlatformModel` from ``platform.nc`` and ``platform.yaml``.
@@ -1275,8 +1275,9 @@ def load_platform_model(
         ``platform.yaml`` content.
     kernel_duration, kernel_dt : float
         Length and step of the retardation kernel, s.
-    ss_order : int
-        Order of the radiation state space.
+    ss_order : int or None
+        Order of the radiation state space; None skips the fit (5-16 s) when the simulator
+        uses the convolution, and leaves empty ``ss_*`` arrays with NaN fit errors.
     """
     from moorlife.turbine import ct_table
 
@@ -1297,8 +1298,12 @@ def load_platform_model(
     C = Ch + gravity_stiffness(mtot, cg, g)
     t = np.arange(0.0, kernel_duration + 0.5 * kernel_dt, kernel_dt)
     K = retardation_kernel(omega, B, t)
-    step = max(1, int(round(0.5 / kernel_dt)))  # fit on a 0.5 s sampling: small Hankel matrix
-    ss = fit_state_space(t[::step], K[::step], ss_order, omega=omega, damping=B)
+    if ss_order is None:
+        ss_a, ss_b, ss_c, ss_errs = np.zeros((0, 0)), np.zeros((0, 6)), np.zeros((6, 0)), (np.nan, np.nan)
+    else:
+        step = max(1, int(round(0.5 / kernel_dt)))  # fit on a 0.5 s sampling: small Hankel matrix
+        ss = fit_state_space(t[::step], K[::step], ss_order, omega=omega, damping=B)
+        ss_a, ss_b, ss_c, ss_errs = ss.A, ss.B, ss.C, (ss.kernel_error, ss.damping_error)
     mem = members_from_config(platform_cfg, source)
     el = morison_elements(mem, float(platform_cfg.get("morison_strip_length", 1.0)))
     tcfg = platform_cfg["turbine"]
@@ -1311,7 +1316,7 @@ def load_platform_model(
     R = float(tcfg["rotor_radius"])
     return PlatformModel(
         mass=M, total_mass=mtot, cg=cg, added_mass_inf=Ainf, hydrostatic_stiffness=Ch, stiffness=C,
-        ss_A=ss.A, ss_B=ss.B, ss_C=ss.C, ss_kernel_error=ss.kernel_error, ss_damping_error=ss.damping_error,
+        ss_A=ss_a, ss_B=ss_b, ss_C=ss_c, ss_kernel_error=ss_errs[0], ss_damping_error=ss_errs[1],
         kernel_t=t, kernel=K, kernel_dt=float(kernel_dt),
         omega=omega, headings=platform["heading"].values, excitation=X, drift=D, added_mass=A, damping=B,
         morison_points=el["points"], morison_axis=el["axis"], morison_length=el["length"],

@@ -1299,7 +1299,9 @@ def prepare_model(
     """
     from moorlife import hydro
 
-    pm = hydro.load_platform_model(platform_ds, platform_cfg)
+    # the state-space fit (5-16 s) is only needed when it is the radiation model
+    ss_order = 30 if str(sim_cfg.get("radiation", "convolution")) == "statespace" else None
+    pm = hydro.load_platform_model(platform_ds, platform_cfg, ss_order=ss_order)
     return attach_mooring(platform_from(pm, platform_cfg, sim_cfg), mooring_row, mooring_cfg)
 
 
