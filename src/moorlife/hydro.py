@@ -503,8 +503,9 @@ def run_bem(
     n_kochin : int
         Number of directions of the Kochin functions (far-field mean drift).
     n_jobs : int
-        Worker processes (joblib), one frequency each, every frequency solved single-threaded
-        in a fixed order by a fresh solver, so the result does not depend on ``n_jobs``
+        Worker processes; every frequency is solved single-threaded, in a fixed order, by a
+        fresh solver in a freshly spawned process, so the result does not depend on ``n_jobs``
+        nor on what the calling process did before
         (Capytaine's own ``n_jobs`` splits a frequency's problems into groups, which changed
         the results by up to 2e-4 relative between 2 and 3 jobs). Capytaine's LAPACK path is
         not bit-reproducible from run to run even so (about 1e-7 relative, measured with one
@@ -516,8 +517,10 @@ def run_bem(
     xarray.Dataset
         See :func:`moorlife.io.platform.write_platform_nc` for the layout.
     """
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
     import capytaine as cpt
-    from joblib import Parallel, delayed
 
     omega = np.asarray(omega, dtype=float)
     headings = np.asarray(headings, dtype=float)
@@ -533,13 +536,17 @@ def run_bem(
     H_dif = np.zeros((nw, nh, nt), dtype=complex)
 
     # one frequency = one unit of work, whichever process runs it (see n_jobs above)
-    parts = Parallel(n_jobs=max(1, int(n_jobs)), backend="loky")(
-        delayed(_solve_frequency)(body, float(w), headings, theta, kw) for w in omega
-    )
-    for iw, (a_w, b_w, f_w, hr_w, hd_w) in enumerate(parts):
+    # each frequency in a fresh spawned process: Capytaine keeps process-level state (Green
+    # function tabulation, cached decompositions, matrix caches) that made an in-process solve
+    # depend on what the process had solved before (2.5e-4 relative, seen inside pytest)
+    ctx = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(max_workers=max(1, int(n_jobs)), mp_context=ctx, max_tasks_per_child=1) as pool:
+        jobs = [pool.submit(_solve_frequency, body, float(w), headings, theta, kw) for w in [*omega, np.inf]]
+        parts = [j.result() for j in jobs]
+    for iw, (a_w, b_w, f_w, hr_w, hd_w) in enumerate(parts[:-1]):
         A[iw], B[iw], F[iw], H_rad[iw], H_dif[iw] = a_w, b_w, f_w, hr_w, hd_w
     log.info("capytaine: %d frequencies solved", nw)
-    A_inf = _solve_frequency(body, np.inf, headings[:0], theta, kw)[0]
+    A_inf = parts[-1][0]
     hs = body.compute_hydrostatic_stiffness(rho=rho, g=g).sel(influenced_dof=dofs, radiating_dof=dofs).values
     C_hydro = np.asarray(hs, dtype=float)
     # motions (Capytaine convention) and far-field mean drift
