@@ -384,8 +384,10 @@ def test_richardson_recovers_linear_limit():
 def test_bem_identical_whatever_the_worker_count(platform_cfg):
     """1 or 2 jobs agree to round-off: each frequency is one fixed-order, single-threaded unit.
 
-    (Capytaine's own job splitting changed results by 2e-4; its LAPACK path still varies
-    by ~1e-7 relative from run to run, so the bound is 1e-6 relative to each array's peak.)"""
+    Capytaine keeps process-level state: in-process solves differed by 2.3e-4 of the array's
+    peak from solves in workers; each frequency now runs in a fresh spawned process. What is
+    left is Capytaine's run-to-run noise, measured up to 2.6e-6 of the peak on a fresh clone,
+    so the bound is 2e-5 of each array's peak: 8x above that noise, 10x below the defect."""
     from moorlife.io import read_study_config
 
     cfg = read_study_config(ROOT / "config/config.yaml", (ROOT / "config/quick.yaml",),
@@ -397,4 +399,4 @@ def test_bem_identical_whatever_the_worker_count(platform_cfg):
     two = hydro.bem_from_settings(s, n_jobs=2)
     for v in ("added_mass", "added_mass_inf", "damping", "excitation", "drift"):
         ref = float(np.max(np.abs(one[v].values)))
-        np.testing.assert_allclose(one[v].values, two[v].values, rtol=0, atol=1e-6 * ref, err_msg=v)
+        np.testing.assert_allclose(one[v].values, two[v].values, rtol=0, atol=2e-5 * ref, err_msg=v)

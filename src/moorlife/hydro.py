@@ -507,9 +507,9 @@ def run_bem(
         fresh solver in a freshly spawned process, so the result does not depend on ``n_jobs``
         nor on what the calling process did before
         (Capytaine's own ``n_jobs`` splits a frequency's problems into groups, which changed
-        the results by up to 2e-4 relative between 2 and 3 jobs). Capytaine's LAPACK path is
-        not bit-reproducible from run to run even so (about 1e-7 relative, measured with one
-        thread and a fixed hash seed); that is far below the discretisation error, and the
+        the results by up to 2e-4 relative between 2 and 3 jobs). Capytaine is not
+        bit-reproducible from run to run even so (1e-7 to 3e-6 of an array's peak, measured
+        with one thread and a fixed hash seed); that is far below the discretisation error, and the
         hydro rule runs once: every later stage is bit-identical given ``platform.nc``.
 
     Returns
