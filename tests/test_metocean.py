@@ -212,8 +212,12 @@ def test_hs_marginal_and_extremes(full):
     hs = o["hs"]
     decades = hs.size / (24 * 365.25 * 10)
     assert 1.5 <= hs.mean() <= 2.0
-    assert 9.0 <= hs.max() <= 12.0
-    assert 1.0 <= np.sum(hs > 8.0) / decades <= 50.0  # tens of hours per decade, not hundreds
+    # issue 3: a maximum of about 10-11 m over 31 years, a few hours per decade above 8 m
+    # (a storm that peaks at 10 m spends 8-20 h above 8 m, so "a few storms" is the bound)
+    assert 10.0 <= hs.max() <= 11.5
+    assert 1.0 <= np.sum(hs > 8.0) / decades <= 15.0
+    above = np.diff(np.r_[0, (hs > 8.0).astype(int), 0])
+    assert 1 <= np.sum(above == 1) <= 5  # distinct storms above 8 m in 31 years
     assert np.sum(hs > 6.0) / hs.size < 0.005
 
 

@@ -124,11 +124,11 @@ class StormParams:
 
     rate_per_year: float = 14.0
     seasonal_amplitude: float = 0.8
-    intensity_mean: float = 0.5
-    intensity_shape: float = 1.3
-    intensity_max: float = 2.4
-    rise_hours: float = 15.0
-    decay_hours: float = 22.0
+    intensity_mean: float = 0.40
+    intensity_shape: float = 0.9
+    intensity_max: float = 2.6
+    rise_hours: float = 6.0
+    decay_hours: float = 10.0
     duration_shape: float = 4.0
     direction_mean: float = 292.0
     direction_spread: float = 18.0
