@@ -12,7 +12,8 @@ response surfaces of the right character (offsets and tensions rising with Hs an
 thrust peaking at rated wind 11.4 m/s, damage spanning decades and peaking for Tp 13-21 s and
 west-north-west seas), so that the timing and the transform comparison are meaningful.
 
-1. Ours at paper scale: fit (Rippa's closed-form LOO over a 20-value grid, shared shapes) and
+1. Ours at paper scale with the lifecycle defaults (Rippa's closed-form LOO jointly over the
+   q0 grid and the smoothing candidates of ``lifecycle.RBFSettings``, shared shapes) and
    fixed shapes (paper: 0.1 damage, 0.175 others), then predict every hour x 16 outputs.
 2. scipy.interpolate.RBFInterpolator (kernel "gaussian", epsilon = 1/0.175, degree 1) on the
    same normalised coordinates (scipy has no circular metric: directions enter as deg/180
@@ -34,6 +35,7 @@ import time
 import numpy as np
 
 from moorlife import names, rbf
+from moorlife.lifecycle import RBFSettings
 from moorlife.selection import mda, scaling_from, select_validation
 
 SEED = 20190601
@@ -112,9 +114,13 @@ def main() -> None:
     rbf.predict_rbf(rbf.fit_rbf(pts[train[:50]], y[:50, :2], is_direction=MASK, shape=0.2), pts[:100])
 
     # 1. ours at paper scale
-    grid = rbf.shape_grid(0.02, 1.0, 20)
+    st = RBFSettings()
+    grid = rbf.shape_grid(st.grid_min, st.grid_max, st.grid_n)
+    print(f"settings: q0 grid {st.grid_min}-{st.grid_max} x {st.grid_n}, smoothing {st.smoothing}, "
+          f"share_tol {st.share_tol}")
     model, t_fit, c_fit = timed(
-        rbf.fit_rbf, pts[train], y, is_direction=MASK, shapes=grid, log_output=is_dmg, share_tol=0.02, lo=lo, span=span
+        rbf.fit_rbf, pts[train], y, is_direction=MASK, shapes=grid, log_output=is_dmg, share_tol=st.share_tol,
+        smoothing=st.smoothing, lo=lo, span=span
     )
     pred, t_pred, c_pred = timed(rbf.predict_rbf, model, pts)
     print(f"\n[ours, Rippa] fit {t_fit:.2f} s (cpu {c_fit:.2f}), predict {n} x {len(labels)} "
@@ -161,8 +167,11 @@ def main() -> None:
         print(f"ratio bluemath-tk / ours (Rippa, all outputs): {(t_bfit + t_bpred) * scale / (t_fit + t_pred):.1f}x")
 
     # 4. validation quality: log10 vs linear damage, Rippa vs fixed
-    lin = rbf.fit_rbf(pts[train], y, is_direction=MASK, shapes=grid, log_output=False, share_tol=0.02, lo=lo, span=span)
-    variants = {"rippa+log": model, "rippa+linear": lin, "fixed+log": model_f}
+    lin = rbf.fit_rbf(pts[train], y, is_direction=MASK, shapes=grid, log_output=False, share_tol=st.share_tol,
+                      smoothing=st.smoothing, lo=lo, span=span)
+    exact = rbf.fit_rbf(pts[train], y, is_direction=MASK, shapes=rbf.shape_grid(0.02, 1.0, 18), log_output=is_dmg,
+                        share_tol=0.02, lo=lo, span=span)
+    variants = {"rippa+log": model, "rippa+linear": lin, "fixed+log": model_f, "previous (exact)": exact}
     print("\nvalidation on 225 states: r (RMSE) per output")
     res = {k: metrics(rbf.predict_rbf(m, pts[valid]), y_val) for k, m in variants.items()}
     print(f"{'output':<18}" + "".join(f"{k:>28}" for k in variants))

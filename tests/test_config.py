@@ -75,6 +75,7 @@ def test_defaults_are_filled(schema):
         ({"seed": "abc"}, r"'seed' = 'abc'"),
         ({"hindcast": {"source": "era6"}}, r"'hindcast\.source' = 'era6'"),
         ({"simulation": {"batch_size": 0}}, r"'simulation\.batch_size' = 0"),
+        ({"lifecycle": {"rbf": {"smoothing": [0.0, -0.1]}}}, r"'lifecycle\.rbf\.smoothing' = \[0\.0, -0\.1\]"),
     ],
 )
 def test_bad_config_names_key_and_value(schema, config, patch, pattern):

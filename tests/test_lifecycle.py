@@ -226,7 +226,8 @@ def test_rippa_mode_and_other_transform_are_reported():
     assert np.isfinite(ds["validation_r_other_transform"].sel(output="damage_sn/M2"))
     assert np.isnan(ds["validation_r_other_transform"].sel(output="surge_mpm"))
     assert ds.attrs["rbf_shape_mode"] == "rippa"
-    assert np.all(np.isin(ds["shape_parameter"].values, np.geomspace(0.02, 1.0, 8)))
+    assert np.all(np.isin(ds["shape_parameter"].values, np.geomspace(settings.grid_min, settings.grid_max, 8)))
+    assert np.all(np.isin(ds["smoothing"].values, settings.smoothing))
 
 
 def test_bad_simulation_values_are_named():

@@ -128,6 +128,51 @@ def test_rippa_picks_the_grid_minimum_and_sharing_reduces_distinct_shapes():
     assert np.all(got <= best * 1.5 + 1e-15)
 
 
+def test_smoothed_rippa_closed_form_equals_brute_force_leave_one_out():
+    """Rippa's ratio is the exact leave-one-out residual of the smoothed system too."""
+    x = _sea_states(50, seed=11)
+    y = np.column_stack([x[:, 2] ** 1.5 * np.cos(np.deg2rad(x[:, 4] - 300)), x[:, 0] / (1 + x[:, 3])])
+    model = rbf.fit_rbf(x, y, is_direction=DIRS5, shape=0.3, smoothing=0.05)
+    np.testing.assert_array_equal(model.smoothing, [0.05, 0.05])
+    lo, span = model.space.lower, model.space.scale
+    for k in (0, 23, 49):
+        keep = np.arange(50) != k
+        sub = rbf.fit_rbf(x[keep], y[keep], is_direction=DIRS5, shape=0.3, smoothing=0.05, lo=lo, span=span)
+        e = y[k] - rbf.predict_rbf(sub, x[k : k + 1])[0]
+        np.testing.assert_allclose(model.loo_error[k], e, rtol=1e-6, atol=1e-10)
+
+
+def test_joint_smoothing_choice_is_the_loo_minimum_and_filters_noise():
+    x = _sea_states(300, seed=12)
+    truth = np.sin(x[:, 2] / 2) + x[:, 3] / 10 + 0.3 * np.cos(np.deg2rad(x[:, 1]))
+    noisy = truth + 0.15 * np.random.default_rng(13).standard_normal(truth.size)
+    y = np.column_stack([truth, noisy])
+    grid = rbf.shape_grid(0.05, 1.0, 8)
+    lams = [0.0, 0.01, 0.03, 0.1, 0.3]
+    model = rbf.fit_rbf(x, y, is_direction=DIRS5, shapes=grid, smoothing=lams)
+    assert model.smoothing[1] > 0  # the noisy output is smoothed
+    # the choice is the joint leave-one-out minimum over (q0, lambda)
+    z = rbf.normalise(x, model.space)
+    d2 = rbf.squared_distances(z, z, DIRS5)
+    basis = rbf.polynomial_basis(z, DIRS5)
+    rms = np.stack([rbf.loo_curve(d2, basis, y, grid, lam).rms for lam in lams])
+    for j in range(2):
+        li, gi = np.unravel_index(np.argmin(rms[:, :, j]), rms.shape[:2])
+        assert (model.smoothing[j], model.shape[j]) == (lams[li], grid[gi])
+    # and it predicts the noise-free truth better than exact interpolation of the noise
+    xt = _sea_states(400, seed=14)
+    tt = np.sin(xt[:, 2] / 2) + xt[:, 3] / 10 + 0.3 * np.cos(np.deg2rad(xt[:, 1]))
+    exact = rbf.fit_rbf(x, noisy, is_direction=DIRS5, shapes=grid)
+    err_smooth = np.sqrt(np.mean((rbf.predict_rbf(model, xt)[:, 1] - tt) ** 2))
+    err_exact = np.sqrt(np.mean((rbf.predict_rbf(exact, xt)[:, 0] - tt) ** 2))
+    assert err_smooth < 0.8 * err_exact
+    # a single candidate 0 is the exact interpolant, as a scalar 0
+    one = rbf.fit_rbf(x, y, is_direction=DIRS5, shapes=grid, smoothing=[0.0])
+    np.testing.assert_array_equal(one.weights, rbf.fit_rbf(x, y, is_direction=DIRS5, shapes=grid).weights)
+    with pytest.raises(ValueError, match="non-negative"):
+        rbf.fit_rbf(x, y, is_direction=DIRS5, shapes=grid, smoothing=[0.0, -0.1])
+
+
 def test_distance_is_the_selection_metric():
     x = _sea_states(40, seed=11)
     space = rbf.fit_space(x, DIRS5)
@@ -213,3 +258,21 @@ def test_bad_input_errors_name_the_problem():
         rbf.fit_rbf(x, x[:, 2], is_direction=DIRS5, shape=0.0)
     with pytest.raises(ValueError, match="well-conditioned"):
         rbf.choose_shapes(rbf.LOOCurve(np.array([1.0, 2.0]), np.full((2, 1), np.inf), np.zeros(2)))
+
+
+@pytest.mark.parametrize("smoothing", [0.0, 0.03])
+def test_loo_residuals_equal_rippa_on_the_block_inverse(smoothing):
+    x = _sea_states(90, seed=21)
+    y = np.column_stack([np.sin(x[:, 2]) + x[:, 3] / 10, np.log(1 + x[:, 0])])
+    space = rbf.fit_space(x, DIRS5)
+    z = rbf.normalise(x, space)
+    d2 = rbf.squared_distances(z, z, DIRS5)
+    basis = rbf.polynomial_basis(z, DIRS5)
+    k = rbf.gaussian(d2, 0.3) + smoothing * np.eye(90)
+    h, rc_h = rbf.kernel_block_inverse(k, basis)
+    e, rc = rbf.loo_residuals(k, basis, y)
+    ref = rbf.rippa_errors(h, y)
+    np.testing.assert_allclose(e, ref, rtol=1e-7, atol=1e-9 * np.abs(ref).max())
+    assert rc == rc_h > 0
+    bad, rc0 = rbf.loo_residuals(np.ones((90, 90)), basis, y)
+    assert bad is None and rc0 == 0.0

@@ -91,7 +91,10 @@ class RBFSettings:
         See :func:`moorlife.rbf.choose_shapes`.
     log_damage : bool
         Interpolate ``log10`` of the damage outputs.
-    smoothing : float
+    smoothing : tuple of float
+        Ridge candidates on the kernel diagonal; with several, each output takes the one with
+        the smallest leave-one-out error, jointly with its shape (``(0.0,)``: exact
+        interpolation, the paper's choice).
     chunk_rows : int
     outputs : tuple of str
         Variables of ``simulations.zarr`` to rebuild.
@@ -101,12 +104,12 @@ class RBFSettings:
     fixed_damage: float = 0.1
     fixed_tension: float = 0.175
     fixed_other: float = 0.175
-    grid_min: float = 0.02
+    grid_min: float = 0.05
     grid_max: float = 1.0
-    grid_n: int = 18
-    share_tol: float = 0.02
+    grid_n: int = 10
+    share_tol: float = 0.0
     log_damage: bool = True
-    smoothing: float = 0.0
+    smoothing: tuple[float, ...] = (0.0, 0.01, 0.03, 0.1)
     chunk_rows: int = 8192
     outputs: tuple[str, ...] = DEFAULT_OUTPUTS + ("tension_mean", "surge_mean", "sway_mean")
 
@@ -136,12 +139,24 @@ def rbf_settings(section: Mapping[str, Any] | None = None, source: str = "config
         grid_n=int(grid.get("n", d.grid_n)),
         share_tol=float(s.get("share_tol", d.share_tol)),
         log_damage=bool(s.get("log_damage", d.log_damage)),
-        smoothing=float(s.get("smoothing", d.smoothing)),
+        smoothing=_smoothing(s.get("smoothing", d.smoothing), source),
         chunk_rows=int(s.get("chunk_rows", d.chunk_rows)),
         outputs=tuple(s.get("outputs", d.outputs)),
     )
     if not 0 < out.grid_min < out.grid_max:
         raise ValueError(f"{source}: lifecycle.rbf.grid needs 0 < min < max, got {out.grid_min}, {out.grid_max}")
+    return out
+
+
+def _smoothing(value: Any, source: str) -> tuple[float, ...]:
+    """``lifecycle.rbf.smoothing`` as a tuple of candidates (a number or a list of numbers >= 0)."""
+    vals = list(value) if isinstance(value, (list, tuple)) else [value]
+    try:
+        out = tuple(float(v) for v in vals)
+    except (TypeError, ValueError):
+        raise ValueError(f"{source}: lifecycle.rbf.smoothing = {value!r}; expected numbers >= 0") from None
+    if not out or any(not (v >= 0) for v in out):
+        raise ValueError(f"{source}: lifecycle.rbf.smoothing = {value!r}; expected numbers >= 0")
     return out
 
 
@@ -601,6 +616,7 @@ def _fit_vars(out: xr.Dataset, model: rbf.RBFModel, x_train: np.ndarray, ids: np
     """Shape parameters, transforms and leave-one-out residuals of the fit."""
     out = out.assign_coords(train=("train", ids))
     out["shape_parameter"] = ("output", model.shape, _a("RBF shape parameter q0 (normalised distance)"))
+    out["smoothing"] = ("output", model.smoothing, _a("RBF ridge term on the kernel diagonal (0: exact)"))
     out["loo_rmse"] = ("output", np.sqrt(np.mean(model.loo_error**2, axis=0)),
                        _a("Rippa leave-one-out RMSE (transformed space)"))
     out["log_transform"] = ("output", model.log_output.astype(np.int8), _a("1 if interpolated as log10"))

@@ -54,6 +54,9 @@ __all__ = [
     "solve_weights",
     "kernel_block_inverse",
     "rippa_errors",
+    "loo_residuals",
+    "choose_candidates",
+    "choose_shapes_and_smoothing",
     "loo_curve",
     "choose_shapes",
     "shape_grid",
@@ -107,8 +110,8 @@ class RBFModel:
     loo_error : numpy.ndarray, shape (m, n_out)
         Leave-one-out residuals at the chosen shape, in the transformed space
         (``log10`` units for log outputs).
-    smoothing : float
-        Ridge term added to the kernel diagonal (0: exact interpolation).
+    smoothing : numpy.ndarray, shape (n_out,)
+        Ridge term added to the kernel diagonal per output (0: exact interpolation).
     """
 
     space: Space
@@ -118,7 +121,7 @@ class RBFModel:
     poly_coef: np.ndarray
     log_output: np.ndarray
     loo_error: np.ndarray
-    smoothing: float = 0.0
+    smoothing: np.ndarray
 
     @property
     def n_outputs(self) -> int:
@@ -497,6 +500,50 @@ def kernel_block_inverse(kernel: np.ndarray, basis: np.ndarray) -> tuple[np.ndar
     return kinv, float(rcond)
 
 
+def loo_residuals(kernel: np.ndarray, basis: np.ndarray, values: np.ndarray) -> tuple[np.ndarray | None, float]:
+    """Rippa's leave-one-out residuals without forming the inverse (the search's inner loop).
+
+    Same result as ``rippa_errors(kernel_block_inverse(kernel, basis)[0], values)`` at about half
+    the cost: with the Cholesky factor ``K = U^T U``, ``diag(K^-1)`` is the row sums of squares
+    of ``U^-1`` (one triangular inverse) and ``K^-1 y`` two triangular solves; the polynomial
+    block enters through the Schur complement ``G = P^T K^-1 P``:
+    ``H y = K^-1 y - K^-1 P G^-1 P^T K^-1 y``, ``diag(H) = diag(K^-1) - rowsum((K^-1 P) G^-1 * K^-1 P)``.
+
+    Parameters
+    ----------
+    kernel : numpy.ndarray, shape (m, m)
+        ``K`` (plus any smoothing on the diagonal), symmetric.
+    basis : numpy.ndarray, shape (m, p)
+    values : numpy.ndarray, shape (m, n_out)
+
+    Returns
+    -------
+    errors : numpy.ndarray, shape (m, n_out), or None
+        ``y_k - f^{(-k)}(x_k)``; None when ``K`` is not numerically positive definite.
+    rcond : float
+        LAPACK estimate of the reciprocal 1-norm condition number of ``K`` (0 when singular).
+    """
+    chol, info = sla.lapack.dpotrf(kernel, lower=0, clean=1)
+    if info != 0:
+        return None, 0.0
+    rcond, _ = sla.lapack.dpocon(chol, np.linalg.norm(kernel, 1))
+    uinv, info = sla.lapack.dtrtri(chol, lower=0)
+    if info != 0:
+        return None, 0.0
+    diag = np.einsum("ij,ij->i", uinv, uinv)
+    rhs = np.concatenate([values, basis], axis=1)
+    sol = sla.cho_solve((chol, False), rhs, check_finite=False)
+    ky, kp = sol[:, :values.shape[1]], sol[:, values.shape[1]:]
+    try:
+        g_inv_pt = np.linalg.solve(basis.T @ kp, np.concatenate([kp.T, basis.T @ ky], axis=1))
+    except np.linalg.LinAlgError:
+        return None, 0.0
+    m = kernel.shape[0]
+    a = ky - kp @ g_inv_pt[:, m:]
+    diag = diag - np.einsum("ij,ji->i", kp, g_inv_pt[:, :m])
+    return a / diag[:, None], float(rcond)
+
+
 def rippa_errors(inverse: np.ndarray, values: np.ndarray) -> np.ndarray:
     """Leave-one-out residuals in Rippa's closed form.
 
@@ -559,11 +606,10 @@ def loo_curve(
         k = gaussian(d2, qi)
         if smoothing:
             k[np.arange(m), np.arange(m)] += smoothing
-        inv, rc = kernel_block_inverse(k, basis)
+        e, rc = loo_residuals(k, basis, values)
         rcond[i] = rc
-        if inv is None or rc < MIN_RCOND:
+        if e is None or rc < MIN_RCOND:
             continue
-        e = rippa_errors(inv, values)
         rms[i] = np.sqrt(np.mean(e * e, axis=0))
     return LOOCurve(shapes=q, rms=rms, rcond=rcond)
 
@@ -598,18 +644,92 @@ def choose_shapes(curve: LOOCurve, share_tol: float = 0.0) -> np.ndarray:
             f"output {bad}: no shape parameter in [{curve.shapes[0]:.4g}, {curve.shapes[-1]:.4g}] gives a "
             "well-conditioned RBF system; lower the shape grid or add smoothing"
         )
+    return curve.shapes[choose_candidates(rms, share_tol)]
+
+
+def choose_candidates(rms: np.ndarray, share_tol: float = 0.0) -> np.ndarray:
+    """Index of the chosen candidate per output from leave-one-out RMS errors.
+
+    Parameters
+    ----------
+    rms : numpy.ndarray, shape (c, n_out)
+        Leave-one-out RMS per candidate (rows in order of preference on ties) and output;
+        every output has at least one finite entry.
+    share_tol : float
+        See :func:`choose_shapes`: a greedy cover picks as few distinct candidates as possible
+        among those within ``(1 + share_tol)`` of each output's minimum.
+
+    Returns
+    -------
+    numpy.ndarray of int, shape (n_out,)
+    """
     best = np.min(rms, axis=0)
     ok = rms <= best * (1.0 + share_tol) if share_tol > 0 else rms == best
     chosen: list[int] = []
     uncovered = np.ones(rms.shape[1], dtype=bool)
     while uncovered.any():
         counts = (ok & uncovered).sum(axis=1)
-        g = int(np.argmax(counts))  # ties -> smallest shape, deterministic
+        g = int(np.argmax(counts))  # ties -> first candidate, deterministic
         chosen.append(g)
         uncovered &= ~ok[g]
     sub = rms[chosen]
     sub = np.where(ok[chosen], sub, np.inf)
-    return curve.shapes[np.asarray(chosen)[np.argmin(sub, axis=0)]]
+    return np.asarray(chosen)[np.argmin(sub, axis=0)]
+
+
+def choose_shapes_and_smoothing(
+    d2: np.ndarray,
+    basis: np.ndarray,
+    values: np.ndarray,
+    shapes: npt.ArrayLike,
+    smoothings: npt.ArrayLike,
+    share_tol: float = 0.0,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Shape parameter and smoothing per output, jointly, by Rippa's leave-one-out error.
+
+    The closed form ``e_k = a_k / (M^{-1})_{kk}`` holds for the smoothed system
+    ``K + lambda I`` too (it is the exact leave-one-out residual of that linear smoother), so
+    each ``(q0, lambda)`` pair costs one matrix inverse for all outputs. Smoothing helps the
+    outputs whose simulated values carry the realisation noise of a one-hour record (maxima,
+    the damage of lightly loaded lines): an exact interpolant reproduces the noise.
+
+    Parameters
+    ----------
+    d2 : numpy.ndarray, shape (m, m)
+    basis : numpy.ndarray, shape (m, p)
+    values : numpy.ndarray, shape (m, n_out)
+        Training values (already transformed).
+    shapes : array_like, shape (g,)
+        Candidate ``q0``; a single value keeps it fixed (per-output fixed values: call per value).
+    smoothings : array_like, shape (s,)
+        Candidate ridge terms (non-negative; 0 is exact interpolation and wins ties).
+    share_tol : float
+        See :func:`choose_shapes`.
+
+    Returns
+    -------
+    shape, smoothing : numpy.ndarray, shape (n_out,)
+
+    Raises
+    ------
+    ValueError
+        If no candidate gives a well-conditioned system for some output.
+    """
+    q = np.atleast_1d(np.asarray(shapes, dtype=float))
+    lam = np.atleast_1d(np.asarray(smoothings, dtype=float))
+    if lam.size == 0 or np.any(~(lam >= 0)):
+        raise ValueError(f"smoothing candidates must be non-negative, got {lam}")
+    lam = np.sort(lam)
+    rms = np.concatenate([loo_curve(d2, basis, values, q, float(s)).rms for s in lam])  # (s*g, n_out)
+    if not np.isfinite(rms).any(axis=0).all():
+        bad = int(np.flatnonzero(~np.isfinite(rms).any(axis=0))[0])
+        raise ValueError(
+            f"output {bad}: no shape parameter in [{q[0]:.4g}, {q[-1]:.4g}] with smoothing in "
+            f"[{lam[0]:.3g}, {lam[-1]:.3g}] gives a well-conditioned RBF system; lower the shape grid "
+            "or add smoothing"
+        )
+    idx = choose_candidates(rms, share_tol)
+    return q[idx % q.size], lam[idx // q.size]
 
 
 # --------------------------------------------------------------------------- fit / predict
@@ -623,7 +743,7 @@ def fit_rbf(
     shape: float | npt.ArrayLike | None = None,
     shapes: npt.ArrayLike | None = None,
     log_output: bool | npt.ArrayLike = False,
-    smoothing: float = 0.0,
+    smoothing: float | npt.ArrayLike = 0.0,
     share_tol: float = 0.0,
     lo: npt.ArrayLike | None = None,
     span: npt.ArrayLike | None = None,
@@ -643,8 +763,10 @@ def fit_rbf(
         Candidate grid for Rippa; default ``shape_grid(0.02, 1.0, 20)``.
     log_output : bool or array_like of bool (n_out,)
         Interpolate ``log10`` of these outputs (they must be positive).
-    smoothing : float
-        Ridge term (0: exact interpolation, the paper's choice).
+    smoothing : float or array_like
+        Ridge term (0: exact interpolation, the paper's choice). Several values are candidates:
+        each output then takes the one with the smallest leave-one-out error, jointly with its
+        shape (:func:`choose_shapes_and_smoothing`).
     share_tol : float
         See :func:`choose_shapes`.
     lo, span : array_like (d,), optional
@@ -688,20 +810,28 @@ def fit_rbf(
     basis = polynomial_basis(z, space.is_direction)
     if z.shape[0] < basis.shape[1] + 1:
         raise ValueError(f"{z.shape[0]} training points are too few for {basis.shape[1]} polynomial terms")
+    lam_grid = np.atleast_1d(np.asarray(smoothing, dtype=float))
+    if lam_grid.size == 0 or np.any(~(lam_grid >= 0)):
+        raise ValueError(f"smoothing must be non-negative, got {smoothing!r}")
     if shape is None:
         grid = shape_grid(0.02, 1.0, 20) if shapes is None else np.asarray(shapes, dtype=float)
-        q = choose_shapes(loo_curve(d2, basis, y, grid, smoothing), share_tol)
+        q, lam = choose_shapes_and_smoothing(d2, basis, y, grid, lam_grid, share_tol)
     else:
         q = np.broadcast_to(np.asarray(shape, dtype=float), (n_out,)).copy()
         if np.any(~(q > 0)):
             raise ValueError(f"shape parameters must be positive, got {q}")
+        lam = np.full(n_out, lam_grid[0])
+        if lam_grid.size > 1:  # fixed shapes, smoothing by leave-one-out per shape
+            for qi in np.unique(q):
+                cols = np.flatnonzero(q == qi)
+                lam[cols] = choose_shapes_and_smoothing(d2, basis, y[:, cols], [qi], lam_grid, share_tol)[1]
     m = z.shape[0]
     weights = np.empty_like(y)
     poly = np.empty((basis.shape[1], n_out))
     loo = np.empty_like(y)
-    for qi in np.unique(q):
-        cols = np.flatnonzero(q == qi)
-        mat = augmented_matrix(d2, basis, float(qi), smoothing)
+    for qi, li in sorted(set(zip(q.tolist(), lam.tolist()))):
+        cols = np.flatnonzero((q == qi) & (lam == li))
+        mat = augmented_matrix(d2, basis, float(qi), float(li))
         w, c = solve_weights(mat, y[:, cols])
         weights[:, cols] = w
         poly[:, cols] = c
@@ -717,7 +847,7 @@ def fit_rbf(
         poly_coef=poly,
         log_output=logs,
         loo_error=loo,
-        smoothing=float(smoothing),
+        smoothing=lam,
     )
 
 

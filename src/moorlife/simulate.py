@@ -47,6 +47,8 @@ import scipy.linalg
 
 from moorlife import environment as env
 from moorlife import names
+from moorlife.mooring.dynamic import _step_batch as _dyn_step_batch
+from moorlife.mooring.quasistatic import _fairlead_forces as _qs_fairlead_forces
 
 __all__ = [
     "ModelInputs",
@@ -721,6 +723,60 @@ def _predict_fairleads(q, v, fair, dt, r_out, v_out):  # pragma: no cover - numb
                 r_out[b, l, c] += dt * v_out[b, l, c]
 
 
+@numba.njit(cache=True)
+def _run_dynamic(n, j0, dt, fair, r_f, v_f, mr, mv, mrp, mvp, mhist, nsub, scheme, mparams, mwork, forces, ten,
+                 q, v, xr, zf, f_prev, static, motion, accel, tension, fmoor6, acc, hist, stride, ker, kpi, kpj,
+                 *platform):  # pragma: no cover - numba
+    """The whole record with dynamic lines, in one compiled loop (no per-step dispatch).
+
+    Each step is exactly the Python loop of :func:`integrate`: predict the fairleads, advance
+    the lines (``moorlife.mooring.dynamic._step_batch``, whose ``forces`` and ``ten`` are the
+    state's arrays), then :func:`_advance` the platform.
+    """
+    for j in range(n):
+        _predict_fairleads(q, v, fair, dt, r_f, v_f)
+        _dyn_step_batch(mr, mv, mrp, mvp, mhist, r_f, v_f, dt, nsub, scheme, mparams, mwork, forces, ten)
+        _advance(j, j - j0, dt, q, v, xr, zf, f_prev, forces, True, static, fair, ten, motion, accel, tension,
+                 fmoor6, acc, hist, stride, ker, kpi, kpj, *platform)
+
+
+@numba.njit(cache=True)
+def _run_quasistatic(n, j0, dt, fair, r_f, v_f, anchors, table, forces, ten,
+                     q, v, xr, zf, f_prev, static, motion, accel, tension, fmoor6, acc, hist, stride, ker, kpi, kpj,
+                     *platform):  # pragma: no cover - numba
+    """The whole record with quasi-static lines, in one compiled loop (see :func:`_run_dynamic`)."""
+    for j in range(n):
+        _predict_fairleads(q, v, fair, dt, r_f, v_f)
+        _qs_fairlead_forces(r_f, anchors, *table, forces, ten)
+        _advance(j, j - j0, dt, q, v, xr, zf, f_prev, forces, True, static, fair, ten, motion, accel, tension,
+                 fmoor6, acc, hist, stride, ker, kpi, kpj, *platform)
+
+
+def _run_compiled(moor: Any, mstate: Any, n: int, j0: int, dt: float, fair: np.ndarray, r_f: np.ndarray,
+                  v_f: np.ndarray, loop: tuple, platform: tuple) -> bool:
+    """Run the record in one compiled loop if ``moor`` is a known line model; ``False`` otherwise."""
+    from moorlife import mooring as moor_pkg
+
+    if type(moor) is moor_pkg.DynamicMooring:
+        nsub = max(1, int(math.ceil(dt / moor.settings.max_time_step - 1e-9)))
+        try:
+            _run_dynamic(n, j0, float(dt), fair, r_f, v_f, mstate.r, mstate.v, mstate.r_prev, mstate.v_prev,
+                         mstate.step_prev, nsub, moor._scheme, moor.model.params, moor._w, mstate.forces,
+                         mstate.tension, *loop, *platform)
+        except FloatingPointError:
+            raise FloatingPointError(
+                f"dynamic mooring ({moor.props.name}): non-finite fairlead tension; line state diverged "
+                f"(dt = {dt} s)"
+            ) from None
+        return True
+    if type(moor) is moor_pkg.QuasiStaticMooring:
+        forces, ten = mstate
+        _run_quasistatic(n, j0, float(dt), fair, r_f, v_f, moor.anchors, moor.table.args(), forces, ten,
+                         *loop, *platform)
+        return True
+    return False
+
+
 def _csr(a: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Compressed sparse rows of a dense matrix (exact zeros dropped)."""
     nr = a.shape[0]
@@ -890,6 +946,9 @@ def integrate(
     static = np.asarray(model.static_load, dtype=float)
     if coupled and j0 == 0:
         tension[:, :, 0] = moor.tension(mstate)
+    loop = (q, v, xr, zf, f_prev, static, motion, accel, tension, fmoor6, acc, hist, stride, ker, kpi, kpj)
+    if coupled and _run_compiled(moor, mstate, n, j0, dt, fair, r_f, v_f, loop, args):
+        return Record(dt=dt, motion=motion, accel=accel, tension=tension)
     for j in range(n):
         if coupled:
             # predictor: advance the lines to the fairlead positions extrapolated to t + dt
