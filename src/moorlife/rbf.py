@@ -18,9 +18,12 @@ interpolant is the one of :class:`scipy.interpolate.RBFInterpolator` with
 The weights solve the augmented system ``[[K, P], [P^T, 0]] [w; c] = [y; 0]``. The shape
 parameter is chosen per output by Rippa's (1999) leave-one-out criterion in closed form,
 ``e_k = a_k / (M^{-1})_{kk}`` for the augmented matrix ``M`` (Fasshauer & Zhang 2007), over
-a geometric grid, or fixed (the paper: 0.1 for damage, 0.175 for tension). Outputs whose
-leave-one-out curve is flat share a grid value (``share_tol``), so prediction evaluates
-one kernel block per *distinct* shape parameter.
+a geometric grid, or fixed (the paper: 0.1 for damage, 0.175 for tension). An optional ridge
+``lambda`` on the kernel diagonal (``K + lambda I``) is chosen the same way, jointly with
+``q0``: the closed form is the exact leave-one-out residual of the smoothed system too, and a
+one-hour record's maximum or light-line damage carries seed noise that exact interpolation
+would reproduce. Outputs whose leave-one-out curve is flat can share a grid value
+(``share_tol``), so prediction evaluates one kernel block per *distinct* shape parameter.
 
 Prediction runs in row chunks (bounded memory), float64, in numba kernels (distance, kernel
 block, weighted sums); every row is computed independently in a fixed order, so the numbers do
