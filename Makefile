@@ -16,13 +16,16 @@ $(STAMP): pyproject.toml constraints.txt | $(BIN)/python
 	$(BIN)/python -m pip install --quiet -c constraints.txt -e ".[test]"
 	touch $@
 
-## run: the default study at the paper's scale (271,728 h, 1,000 + 225 states, MS1-MS6)
+## run: the default study at the paper's scale (271,728 h, 1,000 + 225 states, MS1-MS6),
+## ending with the HTML report (report.html)
 run: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES)
+	$(BIN)/snakemake --report report.html
 
 ## quick: the same DAG on config/quick.yaml (a few years, tens of states, short records)
 quick: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --configfile config/quick.yaml
+	$(BIN)/snakemake --report report-quick.html --configfile config/quick.yaml
 
 ## test: the whole test suite (unit, peer and workflow tests)
 test: $(STAMP)
