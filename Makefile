@@ -20,12 +20,12 @@ $(STAMP): pyproject.toml constraints.txt | $(BIN)/python
 ## ending with the HTML report (report.html)
 run: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES)
-	$(BIN)/snakemake --report report.html
+	$(BIN)/snakemake --cores $(CORES) --report report.html
 
 ## quick: the same DAG on config/quick.yaml (a few years, tens of states, short records)
 quick: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --configfile config/quick.yaml
-	$(BIN)/snakemake --report report-quick.html --configfile config/quick.yaml
+	$(BIN)/snakemake --cores $(CORES) --report report-quick.html --configfile config/quick.yaml
 
 ## test: the whole test suite (unit, peer and workflow tests)
 test: $(STAMP)
