@@ -109,7 +109,7 @@ class RBFSettings:
     grid_n: int = 10
     share_tol: float = 0.0
     log_damage: bool = True
-    smoothing: tuple[float, ...] = (0.0, 0.01, 0.03, 0.1)
+    smoothing: tuple[float, ...] = (0.0,)
     chunk_rows: int = 8192
     outputs: tuple[str, ...] = DEFAULT_OUTPUTS + ("tension_mean", "surge_mean", "sway_mean")
 
