@@ -468,6 +468,18 @@ def _inverse(matrix: np.ndarray) -> tuple[np.ndarray, float]:
     return inv, float(rcond) if np.isfinite(rcond) else 0.0
 
 
+def _cholesky(kernel: np.ndarray) -> tuple[np.ndarray | None, float]:
+    """Upper Cholesky factor of ``kernel`` and LAPACK's reciprocal 1-norm condition estimate.
+
+    ``(None, 0.0)`` when ``kernel`` is not numerically positive definite.
+    """
+    chol, info = sla.lapack.dpotrf(kernel, lower=0, clean=1)
+    if info != 0:
+        return None, 0.0
+    rcond, _ = sla.lapack.dpocon(chol, np.linalg.norm(kernel, 1))
+    return chol, float(rcond)
+
+
 def kernel_block_inverse(kernel: np.ndarray, basis: np.ndarray) -> tuple[np.ndarray | None, float]:
     """The kernel block ``(M^{-1})_{11}`` of the inverse augmented matrix, via Cholesky.
 
@@ -489,10 +501,9 @@ def kernel_block_inverse(kernel: np.ndarray, basis: np.ndarray) -> tuple[np.ndar
     rcond : float
         LAPACK estimate of the reciprocal 1-norm condition number of ``K`` (0 when singular).
     """
-    chol, info = sla.lapack.dpotrf(kernel, lower=0, clean=1)
-    if info != 0:
+    chol, rcond = _cholesky(kernel)
+    if chol is None:
         return None, 0.0
-    rcond, _ = sla.lapack.dpocon(chol, np.linalg.norm(kernel, 1))
     kinv = sla.cho_solve((chol, False), np.eye(kernel.shape[0]), check_finite=False)
     kp = kinv @ basis
     try:
@@ -526,10 +537,9 @@ def loo_residuals(kernel: np.ndarray, basis: np.ndarray, values: np.ndarray) -> 
     rcond : float
         LAPACK estimate of the reciprocal 1-norm condition number of ``K`` (0 when singular).
     """
-    chol, info = sla.lapack.dpotrf(kernel, lower=0, clean=1)
-    if info != 0:
+    chol, rcond = _cholesky(kernel)
+    if chol is None:
         return None, 0.0
-    rcond, _ = sla.lapack.dpocon(chol, np.linalg.norm(kernel, 1))
     uinv, info = sla.lapack.dtrtri(chol, lower=0)
     if info != 0:
         return None, 0.0

@@ -758,7 +758,7 @@ def _run_compiled(moor: Any, mstate: Any, n: int, j0: int, dt: float, fair: np.n
     from moorlife import mooring as moor_pkg
 
     if type(moor) is moor_pkg.DynamicMooring:
-        nsub = max(1, int(math.ceil(dt / moor.settings.max_time_step - 1e-9)))
+        nsub = moor.substeps(dt)
         try:
             _run_dynamic(n, j0, float(dt), fair, r_f, v_f, mstate.r, mstate.v, mstate.r_prev, mstate.v_prev,
                          mstate.step_prev, nsub, moor._scheme, moor.model.params, moor._w, mstate.forces,

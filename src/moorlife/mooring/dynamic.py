@@ -826,7 +826,7 @@ class DynamicMooring:
                 f"fairlead positions {r_fair.shape} and velocities {v_fair.shape} must have the state's "
                 f"shape (batch, lines, 3) = {state.forces.shape}"
             )
-        nsub = max(1, int(math.ceil(dt / self.settings.max_time_step - 1e-9)))
+        nsub = self.substeps(dt)
         if dt <= 0.0:
             nsub, dt = 1, 1e-6
         try:
@@ -840,6 +840,10 @@ class DynamicMooring:
                 f"dynamic mooring ({self.props.name}): non-finite fairlead tension; {where} (dt = {dt} s)"
             ) from None
         return state.forces, state
+
+    def substeps(self, dt: float) -> int:
+        """Number of internal substeps of a step ``dt``: ``ceil(dt / max_time_step)``, at least 1."""
+        return max(1, int(math.ceil(dt / self.settings.max_time_step - 1e-9)))
 
     def tension(self, state: DynamicState) -> np.ndarray:
         """Fairlead tension magnitude ``(B, L)``, N."""
