@@ -144,9 +144,22 @@ def test_corrupted_partial_is_not_trusted(tmp_path, cases, client):
 
 def test_blas_threads_pinned(monkeypatch):
     monkeypatch.setenv("OMP_NUM_THREADS", "2")
+    monkeypatch.delenv("MKL_NUM_THREADS", raising=False)
+    before = {k: os.environ.get(k) for k in parallel.BLAS_ENV}
     old = parallel.pin_blas_threads()
     assert old["OMP_NUM_THREADS"] == "2"
     assert all(os.environ[k] == "1" for k in parallel.BLAS_ENV)
+    parallel.restore_env(old)
+    assert {k: os.environ.get(k) for k in parallel.BLAS_ENV} == before
+    assert "MKL_NUM_THREADS" not in os.environ
+
+
+def test_local_cluster_leaves_the_driver_environment_as_found(monkeypatch):
+    monkeypatch.delenv(parallel.SCHEDULER_ENV, raising=False)
+    before = {k: os.environ.get(k) for k in parallel.BLAS_ENV}
+    with parallel.dask_client(1) as client:
+        assert set(client.run(lambda: os.environ.get("NUMBA_NUM_THREADS")).values()) == {"1"}
+    assert {k: os.environ.get(k) for k in parallel.BLAS_ENV} == before
 
 
 def test_workers_run_single_threaded(client):

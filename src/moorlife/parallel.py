@@ -37,6 +37,7 @@ __all__ = [
     "BLAS_ENV",
     "SCHEDULER_ENV",
     "pin_blas_threads",
+    "restore_env",
     "dask_client",
     "batch_slices",
     "dataset_digest",
@@ -58,16 +59,29 @@ _BATCH_DIM = "_batch"
 _log = logging.getLogger("moorlife.parallel")
 
 
-def pin_blas_threads() -> dict[str, str]:
+def pin_blas_threads() -> dict[str, str | None]:
     """Set every BLAS/OpenMP thread variable to 1 in this process's environment.
 
     Snakemake exports ``OMP_NUM_THREADS`` equal to the rule's threads; worker processes
     inherit the environment when they start, so this must run before the cluster starts.
-    Returns the previous values.
+    Returns the previous values (None: unset), for :func:`restore_env`.
     """
-    old = {k: os.environ.get(k, "") for k in BLAS_ENV}
+    old = {k: os.environ.get(k) for k in BLAS_ENV}
     os.environ.update({k: "1" for k in BLAS_ENV})
     return old
+
+
+def restore_env(old: Mapping[str, str | None]) -> None:
+    """Put environment variables back as :func:`pin_blas_threads` found them (None: unset).
+
+    The driver must not keep the pinned values: Numba reads ``NUMBA_NUM_THREADS`` again at
+    every later compilation and refuses a value that differs from its running thread pool.
+    """
+    for k, v in old.items():
+        if v is None:
+            os.environ.pop(k, None)
+        else:
+            os.environ[k] = v
 
 
 @contextlib.contextmanager
@@ -90,21 +104,24 @@ def dask_client(threads: int = 1, *, address: str | None = None) -> Iterator[Any
         with Client(address, timeout="60s") as client:
             yield client
         return
-    pin_blas_threads()
+    old = pin_blas_threads()
     n = max(1, int(threads))
     env = {k: "1" for k in BLAS_ENV}
-    with LocalCluster(
-        n_workers=n,
-        threads_per_worker=1,
-        processes=True,
-        host="127.0.0.1",
-        scheduler_port=0,
-        dashboard_address="127.0.0.1:0",
-        silence_logs=logging.WARNING,
-        env=env,
-    ) as cluster, Client(cluster) as client:
-        _log.info("LocalCluster with %d worker(s), dashboard %s", n, client.dashboard_link)
-        yield client
+    try:
+        with LocalCluster(
+            n_workers=n,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            scheduler_port=0,
+            dashboard_address="127.0.0.1:0",
+            silence_logs=logging.WARNING,
+            env=env,
+        ) as cluster, Client(cluster) as client:
+            _log.info("LocalCluster with %d worker(s), dashboard %s", n, client.dashboard_link)
+            yield client
+    finally:
+        restore_env(old)
 
 
 def batch_slices(n: int, batch_size: int) -> list[slice]:
