@@ -63,7 +63,7 @@ def quiet_forcing(model, grid, nb=1, wind=0.0, wind_dir=270.0):
     return sim.Forcing(grid=grid, force=np.zeros((nb, n1, 6)), wind=np.full((nb, n1), wind),
                        wind_dir=np.tile(np.atleast_2d(
                            np.array([math.cos(math.radians(270 - wind_dir)), math.sin(math.radians(270 - wind_dir))])),
-                           (nb, 1)), kin_every=1, kinematics=np.zeros((nb, grid.n_steps + 2, ns, 3), np.float32))
+                           (nb, 1)), kin_every=1, kinematics=np.zeros((nb, grid.n_steps + 2, 3, ns), np.float32))
 
 
 def test_undamped_decay_periods_match_closed_form():
@@ -373,9 +373,9 @@ def test_drag_kinematics_match_linear_wave_theory(kin_every):
                                       - 1j * np.outer(t, w))
         uh = np.real(ph * (w * np.cosh(k * (p[2] + 200.0)) / np.sinh(k * 200.0))[None, :]).sum(axis=1)
         uz = np.real(-1j * ph * (w * np.sinh(k * (p[2] + 200.0)) / np.sinh(k * 200.0))[None, :]).sum(axis=1)
-        np.testing.assert_allclose(f.kinematics[0, :, s_, 0], uh * np.cos(theta), atol=2e-5)
-        np.testing.assert_allclose(f.kinematics[0, :, s_, 1], uh * np.sin(theta), atol=2e-5)
-        np.testing.assert_allclose(f.kinematics[0, :, s_, 2], uz, atol=2e-5)
+        np.testing.assert_allclose(f.kinematics[0, :, 0, s_], uh * np.cos(theta), atol=2e-5)
+        np.testing.assert_allclose(f.kinematics[0, :, 1, s_], uh * np.sin(theta), atol=2e-5)
+        np.testing.assert_allclose(f.kinematics[0, :, 2, s_], uz, atol=2e-5)
 
 
 def test_thrust_ramps_to_zero_above_cut_out(ms3):

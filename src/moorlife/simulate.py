@@ -47,6 +47,7 @@ import scipy.linalg
 
 from moorlife import environment as env
 from moorlife import names
+from moorlife.mooring.dynamic import _FASTMATH
 from moorlife.mooring.dynamic import _step_batch as _dyn_step_batch
 from moorlife.mooring.quasistatic import _fairlead_forces as _qs_fairlead_forces
 
@@ -291,7 +292,7 @@ class Forcing:
         Unit vector of the wind's direction of travel (x, y).
     kin_every : int
         Kinematics are sampled every ``kin_every`` steps.
-    kinematics : (B, nk, ns, 3) float32
+    kinematics : (B, nk, 3, ns) float32
         Undisturbed wave particle velocity at the strips' mean positions, m/s.
     """
 
@@ -383,7 +384,7 @@ def build_forcing(
     k = env.wave_number(waves.omega, model.depth)
     nkin = (grid.n_steps // kin_every) + 2
     ns = model.strip_pos.shape[0]
-    kin = np.zeros((nb, nkin, ns, 3), dtype=np.float32)
+    kin = np.zeros((nb, nkin, 3, ns), dtype=np.float32)
     for b in range(nb):
         theta = float(waves.theta[b])
         x = _interp_omega(_interp_heading(model.excitation, model.headings, theta), model.omega, waves.omega)
@@ -400,7 +401,7 @@ def build_forcing(
                     force[b, :, dof] += sign * (a.real**2 + a.imag**2)
         if ns:
             tf = _drag_kinematics_tf(model, k, waves.omega, theta)  # (nk, ns, 3)
-            coeff = (waves.amplitude[b][:, None, None] * tf).reshape(waves.omega.size, ns * 3).T
+            coeff = (waves.amplitude[b][:, None, None] * tf).transpose(0, 2, 1).reshape(waves.omega.size, 3 * ns).T
             flat = kin[b].reshape(nkin, ns * 3)
             # synthesise directly on the coarse kinematics grid (same frequency bins)
             coarse = grid.n_fft % kin_every == 0 and 2 * waves.index.max() < grid.n_fft // kin_every
@@ -430,7 +431,7 @@ def rotation_matrix(rot: np.ndarray) -> np.ndarray:
     return out
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, fastmath=_FASTMATH)
 def _rotation(rot, out):  # pragma: no cover - numba
     for i in range(rot.shape[0]):
         cr, sr = math.cos(rot[i, 0]), math.sin(rot[i, 0])
@@ -447,21 +448,24 @@ def _rotation(rot, out):  # pragma: no cover - numba
         out[i, 2, 2] = cp * cr
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always", fastmath=_FASTMATH)
+def _rotated(q, b, f):  # pragma: no cover - numba
+    """``R(q[b, 3:6]) f`` for a 3-vector ``f`` (same matrix as :func:`_rotation`)."""
+    cr, sr = math.cos(q[b, 3]), math.sin(q[b, 3])
+    cp, sp = math.cos(q[b, 4]), math.sin(q[b, 4])
+    cy, sy = math.cos(q[b, 5]), math.sin(q[b, 5])
+    px = cy * cp * f[0] + (cy * sp * sr - sy * cr) * f[1] + (cy * sp * cr + sy * sr) * f[2]
+    py = sy * cp * f[0] + (sy * sp * sr + cy * cr) * f[1] + (sy * sp * cr - cy * sr) * f[2]
+    pz = -sp * f[0] + cp * sr * f[1] + cp * cr * f[2]
+    return px, py, pz
+
+
+@numba.njit(cache=True, fastmath=_FASTMATH)
 def _fairlead_motion(q, v, fair, r_out, v_out):  # pragma: no cover - numba
     """Fairlead positions and velocities ``(B, 3, 3)`` from the platform state."""
-    nb = q.shape[0]
-    rot = np.empty((1, 3))
-    R = np.empty((1, 3, 3))
-    for b in range(nb):
-        rot[0, 0] = q[b, 3]
-        rot[0, 1] = q[b, 4]
-        rot[0, 2] = q[b, 5]
-        _rotation(rot, R)
+    for b in range(q.shape[0]):
         for i in range(fair.shape[0]):
-            px = R[0, 0, 0] * fair[i, 0] + R[0, 0, 1] * fair[i, 1] + R[0, 0, 2] * fair[i, 2]
-            py = R[0, 1, 0] * fair[i, 0] + R[0, 1, 1] * fair[i, 1] + R[0, 1, 2] * fair[i, 2]
-            pz = R[0, 2, 0] * fair[i, 0] + R[0, 2, 1] * fair[i, 1] + R[0, 2, 2] * fair[i, 2]
+            px, py, pz = _rotated(q, b, fair[i])
             r_out[b, i, 0] = q[b, 0] + px
             r_out[b, i, 1] = q[b, 1] + py
             r_out[b, i, 2] = q[b, 2] + pz
@@ -471,23 +475,14 @@ def _fairlead_motion(q, v, fair, r_out, v_out):  # pragma: no cover - numba
             v_out[b, i, 2] = v[b, 2] + wx * py - wy * px
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, fastmath=_FASTMATH)
 def _moor_generalised(q, fmoor, fair, out):  # pragma: no cover - numba
     """6-DOF mooring load about the (displaced) origin from fairlead forces ``(B, 3, 3)``."""
-    nb = q.shape[0]
-    rot = np.empty((1, 3))
-    R = np.empty((1, 3, 3))
-    for b in range(nb):
-        rot[0, 0] = q[b, 3]
-        rot[0, 1] = q[b, 4]
-        rot[0, 2] = q[b, 5]
-        _rotation(rot, R)
+    for b in range(q.shape[0]):
         for d in range(6):
             out[b, d] = 0.0
         for i in range(fair.shape[0]):
-            px = R[0, 0, 0] * fair[i, 0] + R[0, 0, 1] * fair[i, 1] + R[0, 0, 2] * fair[i, 2]
-            py = R[0, 1, 0] * fair[i, 0] + R[0, 1, 1] * fair[i, 1] + R[0, 1, 2] * fair[i, 2]
-            pz = R[0, 2, 0] * fair[i, 0] + R[0, 2, 1] * fair[i, 1] + R[0, 2, 2] * fair[i, 2]
+            px, py, pz = _rotated(q, b, fair[i])
             fx, fy, fz = fmoor[b, i, 0], fmoor[b, i, 1], fmoor[b, i, 2]
             out[b, 0] += fx
             out[b, 1] += fy
@@ -497,14 +492,13 @@ def _moor_generalised(q, fmoor, fair, out):  # pragma: no cover - numba
             out[b, 5] += px * fy - py * fx
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, fastmath=_FASTMATH)
 def _rhs(b, t_frac, j, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
          minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc,
          spos, saxis, scdn, scda, hub, tv, tf, fa, fb, fc, fd,
-         dq, dv, dxr, dzf):  # pragma: no cover - numba
-    """Time derivative of one case's state at ``t = (j + t_frac) dt``."""
+         dq, dv, dxr, dzf, F):  # pragma: no cover - numba
+    """Time derivative of one case's state at ``t = (j + t_frac) dt`` (``F (6,)`` scratch)."""
     # external wave force, linear in time between samples j and j+1
-    F = np.empty(6)
     for d in range(6):
         F[d] = (1.0 - t_frac) * force[b, j, d] + t_frac * force[b, j + 1, d] + fmoor6[b, d]
     # hydrostatics + gravity, linear damping
@@ -527,31 +521,42 @@ def _rhs(b, t_frac, j, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
         for e in range(6):
             acc += rb[r, e] * v[e]
         dxr[r] = acc
-    # Morison drag on the relative velocity
-    ns = spos.shape[0]
+    # Morison drag on the relative velocity; strips along the last axis (unit stride, SIMD)
+    ns = spos.shape[1]
     if ns > 0:
         tk = (j + t_frac) / kin_every
         jk = int(tk)
         wk = tk - jk
+        k0 = kin[b, jk]
+        k1 = kin[b, jk + 1]
+        vx, vy, vz = v[0], v[1], v[2]
         wx, wy, wz = v[3], v[4], v[5]
+        f0 = f1 = f2 = m3 = m4 = m5 = 0.0
         for s in range(ns):
-            px, py, pz = spos[s, 0], spos[s, 1], spos[s, 2]
-            ux = (1 - wk) * kin[b, jk, s, 0] + wk * kin[b, jk + 1, s, 0] - (v[0] + wy * pz - wz * py)
-            uy = (1 - wk) * kin[b, jk, s, 1] + wk * kin[b, jk + 1, s, 1] - (v[1] + wz * px - wx * pz)
-            uz = (1 - wk) * kin[b, jk, s, 2] + wk * kin[b, jk + 1, s, 2] - (v[2] + wx * py - wy * px)
-            ax, ay, az = saxis[s, 0], saxis[s, 1], saxis[s, 2]
+            px, py, pz = spos[0, s], spos[1, s], spos[2, s]
+            ux = (1 - wk) * k0[0, s] + wk * k1[0, s] - (vx + wy * pz - wz * py)
+            uy = (1 - wk) * k0[1, s] + wk * k1[1, s] - (vy + wz * px - wx * pz)
+            uz = (1 - wk) * k0[2, s] + wk * k1[2, s] - (vz + wx * py - wy * px)
+            ax, ay, az = saxis[0, s], saxis[1, s], saxis[2, s]
             ua = ux * ax + uy * ay + uz * az
             nx, ny, nz = ux - ua * ax, uy - ua * ay, uz - ua * az
             un = math.sqrt(nx * nx + ny * ny + nz * nz)
-            fx = scdn[s] * un * nx + scda[s] * abs(ua) * ua * ax
-            fy = scdn[s] * un * ny + scda[s] * abs(ua) * ua * ay
-            fz = scdn[s] * un * nz + scda[s] * abs(ua) * ua * az
-            F[0] += fx
-            F[1] += fy
-            F[2] += fz
-            F[3] += py * fz - pz * fy
-            F[4] += pz * fx - px * fz
-            F[5] += px * fy - py * fx
+            ca = scda[s] * abs(ua) * ua
+            fx = scdn[s] * un * nx + ca * ax
+            fy = scdn[s] * un * ny + ca * ay
+            fz = scdn[s] * un * nz + ca * az
+            f0 += fx
+            f1 += fy
+            f2 += fz
+            m3 += py * fz - pz * fy
+            m4 += pz * fx - px * fz
+            m5 += px * fy - py * fx
+        F[0] += f0
+        F[1] += f1
+        F[2] += f2
+        F[3] += m3
+        F[4] += m4
+        F[5] += m5
     # thrust at the hub, along the wind, from the filtered relative wind
     uw = (1.0 - t_frac) * wind[b, j] + t_frac * wind[b, j + 1]
     ex, ey = wdir[b, 0], wdir[b, 1]
@@ -584,7 +589,7 @@ def _rhs(b, t_frac, j, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
         dv[d] = acc
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, fastmath=_FASTMATH)
 def _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
               minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc,
               spos, saxis, scdn, scda, hub, tv, tf, fa, fb, fc, fd, acc_out):  # pragma: no cover
@@ -599,6 +604,7 @@ def _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
     k = np.empty((4, ny))
     y0 = np.empty(ny)
     ys = np.empty(ny)
+    F = np.empty(6)
     for b in range(nb):
         for d in range(6):
             y0[d] = q[b, d]
@@ -619,7 +625,7 @@ def _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
             _rhs(b, frac, j, ys[0:6], ys[6:12], ys[12:12 + nr], ys[12 + nr:ny], fmoor6, force, wind, wdir,
                  kin, kin_every, minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc, spos, saxis, scdn, scda, hub,
                  tv, tf, fa, fb, fc, fd,
-                 k[stage, 0:6], k[stage, 6:12], k[stage, 12:12 + nr], k[stage, 12 + nr:ny])
+                 k[stage, 0:6], k[stage, 6:12], k[stage, 12:12 + nr], k[stage, 12 + nr:ny], F)
         for d in range(6):
             acc_out[b, d] = k[0, 6 + d]
         for i in range(ny):
@@ -633,7 +639,7 @@ def _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
             zf[b, r] = y0[12 + nr + r]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, fastmath=_FASTMATH)
 def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, motion, accel, tension, fmoor6, acc,
              hist, stride, ker, kpi, kpj,
              force, wind, wdir, kin, kin_every, minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc,
@@ -644,7 +650,7 @@ def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, 
     with a kernel, the radiation convolution. The platform is driven by the mean of the
     mooring forces at the start (``f_prev``) and at the predicted end (``f_new``); ``f_prev``
     then takes ``f_new``. ``ten`` is the line tension at ``t_{j+1}`` (kept as sample ``i + 1``).
-    ``hist (B, nlag, 6)`` is the circular velocity history of the convolution.
+    ``hist (B, stride, 6, 2 nlag)`` is the velocity history of the convolution (:func:`_convolve`).
     """
     nb = q.shape[0]
     nt = motion.shape[2]
@@ -668,8 +674,7 @@ def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, 
     for b in range(nb):
         for d in range(6):
             fmoor6[b, d] += static[d]
-    nlag = ker.shape[0]
-    if nlag > 0:
+    if ker.shape[1] > 0:
         _convolve(j, stride, v, hist, ker, kpi, kpj, fmoor6)
     if i >= 0:
         for b in range(nb):
@@ -685,35 +690,35 @@ def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, 
             accel[b, 2, i] = acc[b, 2] + acc[b, 3] * hy - acc[b, 4] * hx
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, fastmath=_FASTMATH)
 def _convolve(j, stride, v, hist, ker, kpi, kpj, out):  # pragma: no cover - numba
-    """Subtract the radiation convolution ``sum_k ker[k] v(t_j - k stride dt)`` from ``out (B, 6)``.
+    """Subtract the radiation convolution ``sum_k K[k] v(t_j - k stride dt)`` from ``out (B, 6)``.
 
-    ``ker (nlag, npairs)`` already holds the trapezoid weights and its step ``stride dt``;
-    ``hist (B, nhist, 6)`` is the circular velocity history of every step, into which ``v`` is
-    stored first.
+    ``ker (npairs, nlag)`` holds the kernel with the trapezoid weights and its step ``stride dt``
+    folded in, oldest lag first (``ker[p, nlag - 1 - k] = w_k K_p(k stride dt)``).
+    ``hist (B, stride, 6, 2 nlag)`` is the velocity history of every step, split by the
+    step's residue modulo ``stride`` and stored twice (slot and slot + nlag) so that the
+    ``nlag`` samples of a convolution are one contiguous window: each pair is a unit-stride
+    dot product, which the compiler vectorises. ``v`` is stored first.
     """
-    nlag, npair = ker.shape
-    nhist = hist.shape[1]
-    jj = j % nhist
-    kmax = min(j // stride + 1, nlag)
-    acc = np.empty(npair)
+    npair, nlag = ker.shape
+    c = j % stride
+    slot = (j // stride) % nlag
     for b in range(v.shape[0]):
         for d in range(6):
-            hist[b, jj, d] = v[b, d]
-        for p in range(npair):
-            acc[p] = 0.0
-        for k in range(kmax):
-            idx = jj - k * stride
-            if idx < 0:
-                idx += nhist
-            for p in range(npair):
-                acc[p] += ker[k, p] * hist[b, idx, kpj[p]]
-        for p in range(npair):
-            out[b, kpi[p]] -= acc[p]
+            hist[b, c, d, slot] = v[b, d]
+            hist[b, c, d, slot + nlag] = v[b, d]
+    for p in range(npair):  # one kernel row at a time, for every case (it stays in cache)
+        k = ker[p]
+        for b in range(v.shape[0]):
+            h = hist[b, c, kpj[p]]
+            acc = 0.0
+            for i in range(nlag):
+                acc += k[i] * h[slot + 1 + i]
+            out[b, kpi[p]] -= acc
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, fastmath=_FASTMATH)
 def _predict_fairleads(q, v, fair, dt, r_out, v_out):  # pragma: no cover - numba
     """Fairlead positions extrapolated to ``t + dt`` and velocities, ``(B, 3, 3)``."""
     _fairlead_motion(q, v, fair, r_out, v_out)
@@ -831,7 +836,8 @@ def _make_mooring(model: ModelInputs, batch: int):
 def _kernel_at(model: ModelInputs, dt: float) -> tuple[np.ndarray, int, np.ndarray, np.ndarray]:
     """The retardation kernel with trapezoid weights, its stride in steps, and its DOF pairs.
 
-    The kernel keeps its own sampling when it is a whole number ``stride`` of steps (the
+    The kernel is returned as ``(npairs, nlag)``, oldest lag first (the layout of
+    :func:`_convolve`). It keeps its own sampling when it is a whole number ``stride`` of steps (the
     history is then summed every ``stride`` steps: the kernel and the velocity are smooth on
     that scale), else it is resampled at ``dt``.
     """
@@ -845,7 +851,7 @@ def _kernel_at(model: ModelInputs, dt: float) -> tuple[np.ndarray, int, np.ndarr
     ker = np.stack([np.interp(t, t_src, model.kernel[:, p]) for p in range(model.kernel.shape[1])], axis=1)
     w = np.full(t.size, h)  # trapezoid weights folded in
     w[[0, -1]] *= 0.5
-    return (np.ascontiguousarray(ker * w[:, None]), stride, model.kernel_pairs[:, 0].copy(),
+    return (np.ascontiguousarray((ker * w[:, None])[::-1].T), stride, model.kernel_pairs[:, 0].copy(),
             model.kernel_pairs[:, 1].copy())
 
 
@@ -916,7 +922,7 @@ def integrate(
     ra = _csr(model.rad_a)
     minv = np.linalg.inv(model.mass)
     kin = forcing.kinematics
-    if kin.shape[2] != model.strip_pos.shape[0]:
+    if kin.shape[2:] != (3, model.strip_pos.shape[0]):
         raise ValueError("forcing kinematics do not match the model strips")
     moor = mooring_override if mooring_override is not None else _make_mooring(model, nb)
     linear = isinstance(moor, _LinearMooring)
@@ -935,12 +941,12 @@ def integrate(
     # the verification-only linear mooring is exact: folded into the stiffness
     stiff = model.stiffness + (model.mooring_stiffness if linear else 0.0)
     args = (forcing.force, forcing.wind, forcing.wind_dir, kin, forcing.kin_every, minv, stiff,
-            model.damping, ra[0], ra[1], ra[2], model.rad_b, model.rad_c, model.strip_pos, model.strip_axis,
-            model.strip_cdn, model.strip_cda, hub, model.thrust_speed, model.thrust_force,
+            model.damping, ra[0], ra[1], ra[2], model.rad_b, model.rad_c, np.ascontiguousarray(model.strip_pos.T),
+            np.ascontiguousarray(model.strip_axis.T), model.strip_cdn, model.strip_cda, hub, model.thrust_speed, model.thrust_force,
             model.filt_a, model.filt_b, model.filt_c, model.filt_d)
     coupled = not linear
     ker, stride, kpi, kpj = _kernel_at(model, dt)
-    hist = np.zeros((nb, max(1, (ker.shape[0] - 1) * stride + 1), 6))
+    hist = np.zeros((nb, stride, 6, 2 * ker.shape[1]))
     f_new = np.zeros((nb, 3, 3))
     ten = np.zeros((nb, 3))
     static = np.asarray(model.static_load, dtype=float)
