@@ -308,6 +308,24 @@ def test_natural_periods_against_oc4(model):
     np.testing.assert_allclose(T[0], 107.5, rtol=0.10)
 
 
+def test_natural_periods_in_the_oc4_convention(model):
+    """The OC4 periods are one-DOF estimates with the infinite-frequency added mass (the
+    definition's A11 6.49e6 kg, A33 1.47e7 kg, A55 7.21e9 kg m2 are A_inf, not A(0)):
+    with the fixture's own A_inf all three are within 5 %, and so they are with the definition's
+    diagonal added mass and our restoring (within 1 % on the fine default BEM, see
+    validation/hydro.md; the coarse fixture's C33 and C55 are 2-3 % off)."""
+    zero = np.array([0.0])
+    K = model.stiffness + model.mooring_stiffness
+    T = hydro.natural_periods(model.mass, zero, model.added_mass_inf[None], K)
+    np.testing.assert_allclose(T, [107.5, 17.3, 26.8], rtol=0.05)
+    a_def = np.diag([6.49e6, 6.49e6, 1.47e7, 7.21e9, 7.21e9, 0.0])
+    T_def = hydro.natural_periods(model.mass, zero, a_def[None], K)
+    np.testing.assert_allclose(T_def[0], 107.5, rtol=0.01)  # surge: mass + A11 over the mooring alone
+    np.testing.assert_allclose(T_def[1:], [17.3, 26.8], rtol=0.05)  # the fixture's coarse C33, C55
+    # frequency dependence: the surge added mass at the surge period is far above A_inf
+    assert np.interp(2 * np.pi / 110.0, model.omega, model.added_mass[:, 0, 0]) > 1.25 * model.added_mass_inf[0, 0]
+
+
 def test_ogilvie_infinite_added_mass(model):
     est = hydro.added_mass_infinite_ogilvie(model.omega[model.omega > 0.3], model.added_mass[model.omega > 0.3],
                                             model.kernel_t, model.kernel)

@@ -10,8 +10,9 @@ Prints markdown tables (copied into validation/hydro.md):
    curves cross zero inside the band (B33 = 4e3 N s/m at 0.40 rad/s against a peak of 5.5e5),
    so the error is reported normalised by the peak of the WAMIT curve in the band (goal <= 10 %),
    together with the median point-wise relative error.
-2. Natural periods of the linear system (mass + A(w_n), hydrostatics + gravity + the OC4 linear
-   mooring stiffness) with our coefficients and with WAMIT's, against the OC4 code comparison.
+2. Natural periods of the linear system (hydrostatics + gravity + the OC4 linear mooring
+   stiffness), against the OC4 code comparison, in the OC4 definition's convention (one DOF at a
+   time, infinite-frequency added mass; goal 5 %) and, for information, with A(w_n).
 3. Infinite-frequency added mass, hydrostatics, mean surge drift (vs the .12d diagonal), and the
    radiation state-space fit error.
 """
@@ -72,17 +73,41 @@ def main(argv: list[str]) -> int:
     g = pcfg["environment"]["gravity"]
     Km = np.diag(pcfg["mooring_stiffness_diag"])
     pub = pcfg["reference_natural_periods"]
-    print("\n## Natural periods (s): mass + A(w_n); hydrostatics + gravity (-m g zG) + OC4 linear mooring\n")
+    definition_a = np.diag(pcfg["reference_added_mass_inf_diag"])
+    print("\n## Natural periods (s), the OC4 definition's convention: one DOF at a time, M + A_inf;"
+          " hydrostatics + gravity (-m g zG) + OC4 linear mooring\n")
+    print("The OC4 definition tabulates A11 6.49e6 kg, A33 1.47e7 kg, A55 7.21e9 kg m2: the"
+          " infinite-frequency limit (WAMIT's A11 at 0.01 rad/s is 8.75e6 kg). Goal 5 %.\n")
+    print("| dof | published | moorlife (Capytaine A_inf) | diff | WAMIT A_inf (Ogilvie) | diff "
+          "| WAMIT A_inf (.1 file) | diff | OC4 definition's A | diff |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    names = ("surge", "heave", "pitch")
+    zero = np.array([0.0])
+    C_ours = ours["hydrostatic_stiffness"].values + hydro.gravity_stiffness(mtot, cg, g) + Km
+    C_ref = ref["hydrostatic_stiffness"].values + hydro.gravity_stiffness(mtot, cg, g) + Km
+    ref_model = hydro.load_platform_model(ref, pcfg)
+    a_ogilvie = hydro.added_mass_infinite_ogilvie(ref_model.omega[ref_model.omega > 0.2],
+                                                  ref_model.added_mass[ref_model.omega > 0.2],
+                                                  ref_model.kernel_t, ref_model.kernel)
+    cols = [hydro.natural_periods(M, zero, ours["added_mass_inf"].values[None], C_ours),
+            hydro.natural_periods(M, zero, a_ogilvie[None], C_ref),
+            hydro.natural_periods(M, zero, ref["added_mass_inf"].values[None], C_ref),
+            hydro.natural_periods(M, zero, definition_a[None], C_ours)]
+    for i, name in enumerate(names):
+        p = pub[name]
+        ok_all &= abs(cols[0][i] / p - 1) <= 0.05
+        print(f"| {name} | {p} | " + " | ".join(f"{c[i]:.1f} | {100 * (c[i] / p - 1):+.1f} %" for c in cols) + " |")
+
+    print("\n## Natural periods (s), frequency-dependent: M + A(w_n) (fixed point), one DOF at a time;"
+          " same restoring (for information: what a decay test with radiation memory sees)\n")
     print("| dof | published | moorlife (Capytaine) | diff | with WAMIT coefficients | diff |")
     print("|---|---|---|---|---|---|")
     rows = []
-    for ds in (ours, ref):
-        C = ds["hydrostatic_stiffness"].values + hydro.gravity_stiffness(mtot, cg, g) + Km
+    for ds, C in ((ours, C_ours), (ref, C_ref)):
         rows.append(hydro.natural_periods(M, ds["omega"].values, ds["added_mass"].values, C))
-    for i, name in enumerate(("surge", "heave", "pitch")):
+    for i, name in enumerate(names):
         p = pub[name]
         d1, d2 = rows[0][i] / p - 1, rows[1][i] / p - 1
-        ok_all &= abs(d1) <= 0.05
         print(f"| {name} | {p} | {rows[0][i]:.1f} | {100 * d1:+.1f} % | {rows[1][i]:.1f} | {100 * d2:+.1f} % |")
 
     print("\n## Other checks\n")

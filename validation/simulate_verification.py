@@ -47,7 +47,7 @@ def quiet(model: sim.ModelInputs, grid: env.RecordGrid, wind: float = 0.0, wind_
     th = math.radians(270.0 - wind_dir)
     return sim.Forcing(grid=grid, force=np.zeros((1, n1, 6)), wind=np.full((1, n1), wind),
                        wind_dir=np.array([[math.cos(th), math.sin(th)]]), kin_every=1,
-                       kinematics=np.zeros((1, grid.n_steps + 2, model.strip_pos.shape[0], 3), np.float32))
+                       kinematics=np.zeros((1, grid.n_steps + 2, 3, model.strip_pos.shape[0]), np.float32))
 
 
 def period(x: np.ndarray, dt: float, cycles: int = 3) -> float:
