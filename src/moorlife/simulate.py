@@ -431,32 +431,33 @@ def rotation_matrix(rot: np.ndarray) -> np.ndarray:
     return out
 
 
+@numba.njit(cache=True, inline="always", fastmath=_FASTMATH)
+def _rotation_entries(roll, pitch, yaw):  # pragma: no cover - numba
+    """The nine entries of ``Rz(yaw) Ry(pitch) Rx(roll)``, row by row."""
+    cr, sr = math.cos(roll), math.sin(roll)
+    cp, sp = math.cos(pitch), math.sin(pitch)
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    return (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
+            sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
+            -sp, cp * sr, cp * cr)
+
+
 @numba.njit(cache=True, fastmath=_FASTMATH)
 def _rotation(rot, out):  # pragma: no cover - numba
     for i in range(rot.shape[0]):
-        cr, sr = math.cos(rot[i, 0]), math.sin(rot[i, 0])
-        cp, sp = math.cos(rot[i, 1]), math.sin(rot[i, 1])
-        cy, sy = math.cos(rot[i, 2]), math.sin(rot[i, 2])
-        out[i, 0, 0] = cy * cp
-        out[i, 0, 1] = cy * sp * sr - sy * cr
-        out[i, 0, 2] = cy * sp * cr + sy * sr
-        out[i, 1, 0] = sy * cp
-        out[i, 1, 1] = sy * sp * sr + cy * cr
-        out[i, 1, 2] = sy * sp * cr - cy * sr
-        out[i, 2, 0] = -sp
-        out[i, 2, 1] = cp * sr
-        out[i, 2, 2] = cp * cr
+        e = _rotation_entries(rot[i, 0], rot[i, 1], rot[i, 2])
+        out[i, 0, 0], out[i, 0, 1], out[i, 0, 2] = e[0], e[1], e[2]
+        out[i, 1, 0], out[i, 1, 1], out[i, 1, 2] = e[3], e[4], e[5]
+        out[i, 2, 0], out[i, 2, 1], out[i, 2, 2] = e[6], e[7], e[8]
 
 
 @numba.njit(cache=True, inline="always", fastmath=_FASTMATH)
 def _rotated(q, b, f):  # pragma: no cover - numba
-    """``R(q[b, 3:6]) f`` for a 3-vector ``f`` (same matrix as :func:`_rotation`)."""
-    cr, sr = math.cos(q[b, 3]), math.sin(q[b, 3])
-    cp, sp = math.cos(q[b, 4]), math.sin(q[b, 4])
-    cy, sy = math.cos(q[b, 5]), math.sin(q[b, 5])
-    px = cy * cp * f[0] + (cy * sp * sr - sy * cr) * f[1] + (cy * sp * cr + sy * sr) * f[2]
-    py = sy * cp * f[0] + (sy * sp * sr + cy * cr) * f[1] + (sy * sp * cr - cy * sr) * f[2]
-    pz = -sp * f[0] + cp * sr * f[1] + cp * cr * f[2]
+    """``R(q[b, 3:6]) f`` for a 3-vector ``f`` (the matrix of :func:`_rotation`)."""
+    e = _rotation_entries(q[b, 3], q[b, 4], q[b, 5])
+    px = e[0] * f[0] + e[1] * f[1] + e[2] * f[2]
+    py = e[3] * f[0] + e[4] * f[1] + e[5] * f[2]
+    pz = e[6] * f[0] + e[7] * f[1] + e[8] * f[2]
     return px, py, pz
 
 
