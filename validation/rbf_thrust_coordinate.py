@@ -11,37 +11,70 @@ validation r on the 225 states. Motivation: the damage of the lines away from th
 in a narrow band of wind speed just above rated (11.4-12.5 m/s), narrower than any useful shape
 parameter in W; in T(W) that band is the maximum of one coordinate.
 """
-import sys, warnings, numpy as np, xarray as xr, time
-warnings.filterwarnings("ignore")
-from moorlife import lifecycle as lc, rbf, names, turbine
+from __future__ import annotations
+
+import sys
+import time
+import warnings
+
+import numpy as np
+import xarray as xr
+
+from moorlife import lifecycle as lc
+from moorlife import names, rbf, turbine
 from moorlife.io import read_yaml
-R = sys.argv[1]
-pcfg = read_yaml("config/platform.yaml")["turbine"]
-ws, ct = turbine.ct_table(pcfg)
-cases0 = xr.open_zarr(f"{R}/selection/cases.zarr", consolidated=False).load()
-st = lc.RBFSettings()
-grid = rbf.shape_grid(st.grid_min, st.grid_max, st.grid_n)
-for ms in sys.argv[2:]:
-    sims = xr.open_zarr(f"{R}/{ms}/simulations.zarr", consolidated=False).load()
-    dim = names.CASE; common = np.intersect1d(cases0[dim].values, sims[dim].values)
+
+#: The spaces compared: name and the range of T(W) in scaled units (None: the paper's 5-D space).
+SPACES = (("5d", None), ("6d_T", 1.0), ("6d_T0.5", 0.5))
+
+
+def validation_r(results: str, ms: str, cases0: xr.Dataset, ws: np.ndarray, ct: np.ndarray) -> tuple[list[str], dict]:
+    """Validation r per output of one system in each space of :data:`SPACES`."""
+    st = lc.RBFSettings()
+    grid = rbf.shape_grid(st.grid_min, st.grid_max, st.grid_n)
+    sims = xr.open_zarr(f"{results}/{ms}/simulations.zarr", consolidated=False).load()
+    dim = names.CASE
+    common = np.intersect1d(cases0[dim].values, sims[dim].values)
     cases, sims = cases0.sel({dim: common}), sims.sel({dim: common})
-    role = np.array([str(v) for v in cases["role"].values]); tr, va = role == "train", role == "validate"
-    cols = lc.output_columns(sims, dim, st.outputs); y = lc.stack_outputs(sims, dim, cols)
-    x = lc._points(cases, dim); lo, span = lc._selection_scaling(cases)
-    labels = [lc._label(c) for c in cols]; isd = np.array([c[0].startswith("damage") for c in cols])
+    role = np.array([str(v) for v in cases["role"].values])
+    tr, va = role == "train", role == "validate"
+    cols = lc.output_columns(sims, dim, st.outputs)
+    y = lc.stack_outputs(sims, dim, cols)
+    x = lc._points(cases, dim)
+    lo, span = lc._selection_scaling(cases)
+    isd = np.array([c[0].startswith("damage") for c in cols])
     mask = np.array([v.endswith("dir") for v in names.METOCEAN_VARS])
-    T = turbine.thrust(x[:, 0], ws, ct); tmax = turbine.thrust(np.linspace(0, 30, 3001), ws, ct).max()
+    thrust = turbine.thrust(x[:, 0], ws, ct)
+    tmax = turbine.thrust(np.linspace(0, 30, 3001), ws, ct).max()
     res = {}
-    for name, w in [("5d", None), ("6d_T", 1.0), ("6d_T0.5", 0.5)]:
+    for name, w in SPACES:
         if w is None:
             X, m_, l_, s_ = x, mask, lo, span
         else:
-            X = np.column_stack([x, T]); m_ = np.r_[mask, False]; l_ = np.r_[lo, 0.0]; s_ = np.r_[span, tmax / w]
+            X = np.column_stack([x, thrust])
+            m_, l_, s_ = np.r_[mask, False], np.r_[lo, 0.0], np.r_[span, tmax / w]
         t = time.time()
-        m = rbf.fit_rbf(X[tr], y[tr], is_direction=m_, log_output=isd, shapes=grid, smoothing=st.smoothing, lo=l_, span=s_)
+        m = rbf.fit_rbf(X[tr], y[tr], is_direction=m_, log_output=isd, shapes=grid, smoothing=st.smoothing,
+                        lo=l_, span=s_)
         res[name] = lc.validation_metrics(rbf.predict_rbf(m, X[va]), y[va])["r"]
         print(ms, name, "%.0f s" % (time.time() - t), flush=True)
-    for j, lab in enumerate(labels):
-        if "_tn" in lab: continue
-        print("  ", lab.ljust(16), *["%.4f" % res[k][j] for k in res])
-    print("   min", *["%.4f" % res[k].min() for k in res], "mean", *["%.4f" % res[k].mean() for k in res])
+    return [lc._label(c) for c in cols], res
+
+
+def main(argv: list[str]) -> int:
+    warnings.filterwarnings("ignore")
+    results = argv[1]
+    ws, ct = turbine.ct_table(read_yaml("config/platform.yaml")["turbine"])
+    cases0 = xr.open_zarr(f"{results}/selection/cases.zarr", consolidated=False).load()
+    for ms in argv[2:]:
+        labels, res = validation_r(results, ms, cases0, ws, ct)
+        for j, lab in enumerate(labels):
+            if "_tn" in lab:
+                continue
+            print("  ", lab.ljust(16), *["%.4f" % res[k][j] for k in res])
+        print("   min", *["%.4f" % res[k].min() for k in res], "mean", *["%.4f" % res[k].mean() for k in res])
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
