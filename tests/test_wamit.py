@@ -18,7 +18,7 @@ def _k(i, j, base):
 
 def _write_1(path, periods, A, B, A_inf, A_zero, pairs):
     lines = []
-    for per, mat in ((-1.0, A_inf), (0.0, A_zero)):
+    for per, mat in ((0.0, A_inf), (-1.0, A_zero)):  # WAMIT: zero period = infinite frequency
         for i, j in pairs:
             lines.append(f"{per:14.6E} {i:5d} {j:5d} {mat[i - 1, j - 1] / (RHO * L ** _k(i, j, 3)):14.6E}")
     for n, per in enumerate(periods):
@@ -55,6 +55,38 @@ def test_read_1_redimensionalises(one_file):
     np.testing.assert_allclose(b, B, rtol=1e-6)
     np.testing.assert_allclose(ainf, A_inf, rtol=1e-6)
     np.testing.assert_allclose(azero, A_zero, rtol=1e-6)
+
+
+def test_read_1_limits_follow_the_physics(tmp_path):
+    """The row read as A_inf is the w -> inf limit of the finite-frequency data (Ogilvie), and
+    the one read as A(0) their w -> 0 limit: a causal two-pole body in WAMIT's layout."""
+    from moorlife.hydro import added_mass_infinite_ogilvie, retardation_kernel
+
+    # radiation impedance of one damped mode, Z(iw) = c iw / (w0^2 - w^2 + 2 i zeta w0 w) =
+    # B(w) + iw (A(w) - A_inf): causal, B(0) = 0, A(0) - A_inf = c / w0^2 = 2e6 kg
+    a_inf, w0, zeta = 5e6, 0.8, 0.3
+    c = 2e6 * w0**2
+    periods = 2 * np.pi / np.linspace(0.05, 40.0, 800)[::-1]
+    w = 2 * np.pi / periods
+
+    def curves(om):
+        z = c * 1j * om / (w0**2 - om**2 + 2j * zeta * w0 * om)
+        return a_inf + (c * (w0**2 - om**2) / np.abs(w0**2 - om**2 + 2j * zeta * w0 * om) ** 2), z.real
+
+    A, B = np.zeros((w.size, 6, 6)), np.zeros((w.size, 6, 6))
+    A[:, 0, 0], B[:, 0, 0] = curves(w)
+    lim = {k: np.zeros((6, 6)) for k in ("inf", "zero")}
+    lim["inf"][0, 0], lim["zero"][0, 0] = a_inf, curves(np.array([0.0]))[0][0]
+    p = tmp_path / "causal.1"
+    _write_1(p, periods, A, B, lim["inf"], lim["zero"], [(1, 1)])
+    omega, a, b, ainf, azero = read_wamit_1(p, rho=RHO, g=G, ulen=L)
+    t = np.arange(0.0, 120.0, 0.05)
+    K = retardation_kernel(omega, b, t)
+    band = (omega > 0.3) & (omega < 3.0)
+    ogilvie = added_mass_infinite_ogilvie(omega[band], a[band], t, K)
+    assert ainf[0, 0] == pytest.approx(ogilvie[0, 0], rel=5e-3)
+    assert azero[0, 0] == pytest.approx(a[0, 0, 0], rel=2e-3)  # 0.05 rad/s is close to the zero-frequency limit
+    assert abs(azero[0, 0] / ainf[0, 0] - 1) > 0.2  # the two limits are far apart, so a swap fails
 
 
 def test_read_1_sorts_by_frequency(tmp_path, one_file):

@@ -10,7 +10,11 @@ gravity ``g`` (WAMIT User Manual v7, section 4.1)::
     F_i  = rho g A^2 L^m Fbar_i     m = 1 (force), 2 (moment)          (.12d/.12s, per A^2)
 
 The first column is the wave period in s (WAMIT ``IPERIN = 1``, the default and what OpenFAST
-expects); ``PER = -1`` is infinite frequency and ``PER = 0`` zero frequency (``.1`` only).
+expects). In the ``.1`` file two limits carry marker periods: ``PER = 0`` (zero period) is the
+*infinite-frequency* added mass and ``PER = -1`` (infinite period) the *zero-frequency* one. On
+the OC4 ``marin_semi.1`` the ``PER = -1`` rows equal the 0.01 rad/s values (A11 8.74e6 kg) and
+the ``PER = 0`` rows equal the infinite-frequency limit of the finite-frequency data by
+Ogilvie's relation (A11 6.49e6 kg, within 0.1 %).
 Headings are propagation angles in degrees (WAMIT ``BETA``). WAMIT's phase convention,
 ``exp(+i omega t)``, is moorlife's: the complex values are used as they are.
 """
@@ -84,7 +88,8 @@ def read_wamit_1(path, *, rho: float = 1025.0, g: float = 9.80665, ulen: float =
     -------
     omega : ``(nw,)`` rad/s, increasing (finite, non-zero frequencies only);
     added_mass : ``(nw, 6, 6)``; damping : ``(nw, 6, 6)``;
-    added_mass_inf : ``(6, 6)`` or None (``PER = -1`` rows); added_mass_zero : ``(6, 6)`` or None.
+    added_mass_inf : ``(6, 6)`` or None (``PER = 0`` rows); added_mass_zero : ``(6, 6)`` or None
+    (``PER = -1`` rows).
     """
     p = Path(path)
     raw = _load(p, 4, ".1", pad=5)  # PER I J Abar [Bbar]; Bbar absent on PER <= 0 rows
@@ -103,7 +108,7 @@ def read_wamit_1(path, *, rho: float = 1025.0, g: float = 9.80665, ulen: float =
         raise ValueError(f"{p}: data row {bad[0] + 1}: finite-period rows need 5 columns (PER I J Abar Bbar)")
     bad = np.flatnonzero((per < 0) & (per != -1.0))
     if bad.size:
-        raise ValueError(f"{p}: data row {bad[0] + 1}: PER = {per[bad[0]]} (only -1 = infinite frequency is allowed)")
+        raise ValueError(f"{p}: data row {bad[0] + 1}: PER = {per[bad[0]]} (only -1 = zero frequency is allowed)")
     periods = np.unique(per[fin])[::-1]  # decreasing period = increasing omega
     omega = 2.0 * np.pi / periods
     iw = np.searchsorted(-periods, -per[fin])
@@ -111,7 +116,7 @@ def read_wamit_1(path, *, rho: float = 1025.0, g: float = 9.80665, ulen: float =
     B = np.zeros((omega.size, 6, 6))
     A[iw, i[fin] - 1, j[fin] - 1] = raw[fin, 3] * scale[fin]
     B[iw, i[fin] - 1, j[fin] - 1] = raw[fin, 4] * scale[fin] * omega[iw]
-    return omega, A, B, limits.get(-1.0), limits.get(0.0)
+    return omega, A, B, limits.get(0.0), limits.get(-1.0)
 
 
 def read_wamit_3(path, *, rho: float = 1025.0, g: float = 9.80665, ulen: float = 1.0):
@@ -214,7 +219,7 @@ def read_wamit_dataset(prefix: str | os.PathLike[str], *, rho: float = 1025.0, g
     WAMIT files do not record the water depth: pass the one of the run (``water_depth``, m).
 
     The ``.1`` and ``.3`` frequency grids must agree; ``A_inf`` must be in the ``.1``
-    (``PER = -1`` rows).
+    (``PER = 0`` rows).
     """
     from moorlife.hydro import platform_dataset
 
@@ -223,7 +228,7 @@ def read_wamit_dataset(prefix: str | os.PathLike[str], *, rho: float = 1025.0, g
     w3, heads, X = read_wamit_3(prefix + ".3", rho=rho, g=g, ulen=ulen)
     C = read_wamit_hst(prefix + ".hst", rho=rho, g=g, ulen=ulen)
     if a_inf is None:
-        raise ValueError(f"{prefix}.1: no infinite-frequency rows (PER = -1); rerun WAMIT with them")
+        raise ValueError(f"{prefix}.1: no infinite-frequency rows (PER = 0); rerun WAMIT with them")
     if w1.shape != w3.shape or not np.allclose(w1, w3, rtol=1e-4):
         raise ValueError(f"{prefix}.1 and {prefix}.3: frequency grids differ ({w1.size} vs {w3.size} values)")
     drift = None
