@@ -72,7 +72,7 @@ def _stable_key(name: str) -> int:
     return zlib.crc32(name.encode("utf-8"))
 
 
-def case_seed_sequence(seed: int, mooring_system: str, case_id: int) -> np.random.SeedSequence:
+def case_seed_sequence(seed: int, mooring_system: str, case_id: int, stream: str = "case") -> np.random.SeedSequence:
     """The seed sequence of one simulated sea state.
 
     Parameters
@@ -83,11 +83,18 @@ def case_seed_sequence(seed: int, mooring_system: str, case_id: int) -> np.rando
         Mooring-system id, e.g. ``"MS3"``; hashed with CRC-32 so it is stable across
         processes and Python versions (unlike ``hash``).
     case_id : int
-        The sea state's id (``case`` coordinate, or the ``bin`` id for the discrete matrix).
+        The sea state's id along its dimension (``case``, or ``bin`` for the discrete matrix).
+    stream : str
+        The dimension the id belongs to. ``"case"`` (training and validation states) keeps
+        the entropy ``[seed, system, id]``; any other stream appends its CRC-32, so bin 3 of
+        the scatter matrix and case 3 of the selection get independent phases.
     """
-    return np.random.SeedSequence([int(seed), _stable_key(mooring_system), int(case_id)])
+    entropy = [int(seed), _stable_key(mooring_system), int(case_id)]
+    if stream != "case":
+        entropy.append(_stable_key(stream))
+    return np.random.SeedSequence(entropy)
 
 
-def case_rng(seed: int, mooring_system: str, case_id: int) -> np.random.Generator:
+def case_rng(seed: int, mooring_system: str, case_id: int, stream: str = "case") -> np.random.Generator:
     """A PCG64 generator for one sea state, see :func:`case_seed_sequence`."""
-    return np.random.default_rng(case_seed_sequence(seed, mooring_system, case_id))
+    return np.random.default_rng(case_seed_sequence(seed, mooring_system, case_id, stream))

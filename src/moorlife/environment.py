@@ -399,8 +399,10 @@ def wind_series(
     return u[:, None] + synthesise(amp, keep, grid)
 
 
-def case_streams(seed: int, mooring_system: str, case_ids: npt.ArrayLike, n_bins: int) -> tuple[np.ndarray, np.ndarray]:
-    """Wave and wind random phases of each case, from ``case_rng(seed, ms, case_id)`` only.
+def case_streams(
+    seed: int, mooring_system: str, case_ids: npt.ArrayLike, n_bins: int, stream: str = "case"
+) -> tuple[np.ndarray, np.ndarray]:
+    """Wave and wind random phases of each case, from ``case_rng(seed, ms, case_id, stream)`` only.
 
     Parameters
     ----------
@@ -409,6 +411,8 @@ def case_streams(seed: int, mooring_system: str, case_ids: npt.ArrayLike, n_bins
     case_ids : array_like of int, shape (B,)
     n_bins : int
         Number of FFT bins (``n_fft // 2 + 1``).
+    stream : str
+        ``"case"`` or ``"bin"``: the dimension of the ids (see :func:`conventions.case_seed_sequence`).
 
     Returns
     -------
@@ -419,7 +423,7 @@ def case_streams(seed: int, mooring_system: str, case_ids: npt.ArrayLike, n_bins
     wave = np.empty((ids.size, n_bins))
     wind = np.empty((ids.size, n_bins))
     for b, cid in enumerate(ids):
-        rng = case_rng(seed, mooring_system, int(cid))
+        rng = case_rng(seed, mooring_system, int(cid), stream)
         wave[b] = rng.uniform(0.0, 2.0 * np.pi, n_bins)
         wind[b] = rng.uniform(0.0, 2.0 * np.pi, n_bins)
     return wave, wind

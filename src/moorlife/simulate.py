@@ -1223,6 +1223,7 @@ def simulate_batch(
     sim_cfg: Mapping[str, Any],
     fatigue_cfg: Mapping[str, Any] | None,
     stats_cfg: Mapping[str, Any] | None,
+    stream: str = "case",
 ) -> dict[str, np.ndarray]:
     """Simulate a batch of sea states and return their statistics (pure; Dask-friendly).
 
@@ -1241,6 +1242,9 @@ def simulate_batch(
         From :func:`prepare_model`.
     sim_cfg, fatigue_cfg, stats_cfg : mapping
         The ``simulation``, ``fatigue`` and ``statistics`` config sections.
+    stream : str
+        The dimension of ``case_ids`` (``"case"`` or ``"bin"``), so that bins and cases with
+        the same id draw independent phases.
 
     Returns
     -------
@@ -1253,7 +1257,7 @@ def simulate_batch(
     model = model_inputs
     grid = env.record_grid(s["duration"], s["transient"], s["dt"])
     n_bins = grid.n_fft // 2 + 1
-    wave_ph, wind_ph = env.case_streams(seed, mooring_system, ids, n_bins)
+    wave_ph, wind_ph = env.case_streams(seed, mooring_system, ids, n_bins, stream)
     gamma = env.resolve_gamma(s["gamma"], sea["hs"], sea["tp"])
     w_lo, w_hi = (float(model.omega.min()), float(model.omega.max())) if s["omega_range"] is None else map(
         float, s["omega_range"])

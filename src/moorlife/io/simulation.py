@@ -53,10 +53,10 @@ def simulate_store(
     model = simulate.prepare_model(platform_ds, platform_cfg, row, mooring_cfg, sim_cfg)
     log.info("%s: %s mooring, %d sea states along %r", mooring_system, model.mooring_kind, cases.sizes[dim], dim)
     fp = fingerprint(
-        "simulate-v1", moorlife.__version__, mooring_system, row, int(seed), dict(sim_cfg), dict(mooring_cfg or {}), dict(fatigue_cfg or {}),
+        "simulate-v2", dim, moorlife.__version__, mooring_system, row, int(seed), dict(sim_cfg), dict(mooring_cfg or {}), dict(fatigue_cfg or {}),
         dict(stats_cfg or {}), platform_cfg, dataset_digest(cases), dataset_digest(platform_ds),
     )
-    kwargs = dict(mooring_system=mooring_system, seed=int(seed), model_inputs=model, sim_cfg=dict(sim_cfg),
+    kwargs = dict(mooring_system=mooring_system, seed=int(seed), stream=dim, model_inputs=model, sim_cfg=dict(sim_cfg),
                   fatigue_cfg=dict(fatigue_cfg or {}), stats_cfg=dict(stats_cfg or {}))
     attrs = {"mooring_system": mooring_system, "mooring_model": model.mooring_kind, "seed": int(seed),
              "duration": float(sim_cfg.get("duration", 3600.0)), "dt": float(sim_cfg.get("dt", 0.1))}
