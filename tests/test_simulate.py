@@ -311,6 +311,40 @@ def test_oc4_decay_periods_equal_coupled_eigenperiods(oc4):
     np.testing.assert_allclose(z[:, 2, 2].real, pm.damping[idx, 2, 2], rtol=0.02, atol=0.01 * pm.damping[:, 2, 2].max())
 
 
+def test_locked_dofs_hold_and_give_the_one_dof_periods(oc4):
+    """A pitch decay with every other DOF held reproduces the eigenperiod of the pitch block
+    alone (OC4's one-DOF 26.8 s within 5 %); the held DOFs do not move even in waves."""
+    import dataclasses
+
+    _, plat = oc4
+    m = dataclasses.replace(plat, mooring_kind="linear", strip_cdn=plat.strip_cdn * 0, strip_cda=plat.strip_cda * 0)
+    held = (0, 1, 2, 3, 5)
+    t_one = sim.linear_natural_periods(m, locked=held)
+    t_all = sim.linear_natural_periods(m)
+    assert np.isinf(t_one[list(held)]).all()
+    assert t_one[4] > 1.04 * t_all[4]  # the surge-pitch coupling shortens the free pitch mode
+    assert t_one[4] == pytest.approx(26.8, rel=0.05)
+    grid = env.record_grid(150.0, 0.0, 0.1)
+    q0 = np.array([[1.0, 0, 0, 0, 0.03, 0]])
+    rec = sim.integrate(m, quiet_forcing(m, grid), transient=0.0, q0=q0, locked=held)
+    y = rec.motion[0, 4]
+    up = np.flatnonzero((y[:-1] < 0) & (y[1:] >= 0))
+    tz = up + (-y[up]) / (y[up + 1] - y[up])
+    assert np.diff(tz[:4]).mean() * grid.dt == pytest.approx(t_one[4], rel=0.01)
+    np.testing.assert_array_equal(rec.motion[0, held], np.broadcast_to(q0[0, list(held)][:, None], (5, y.size)))
+    waves = env.wave_components(grid, np.array([4.0]), np.array([9.0]), np.array([300.0]), np.array([3.3]),
+                                env.case_streams(1, "MS1", [0], grid.n_fft // 2 + 1)[0],
+                                omega_min=float(m.omega.min()), omega_max=float(m.omega.max()))
+    f = sim.build_forcing(m, grid, waves, np.zeros((1, grid.n_steps + 1)), np.array([270.0]), kin_every=1,
+                          second_order=True)
+    rec = sim.integrate(m, f, transient=0.0, locked=(0, 1, 5))
+    assert np.all(rec.motion[0, [0, 1, 5]] == 0.0) and np.ptp(rec.motion[0, 2]) > 0.1
+    with pytest.raises(ValueError, match="locked DOFs"):
+        sim.integrate(m, f, transient=0.0, locked=range(6))
+    with pytest.raises(ValueError, match="v0 must be 0"):
+        sim.integrate(m, f, transient=0.0, v0=[[0.1, 0, 0, 0, 0, 0]], locked=(0,))
+
+
 @pytest.mark.slow
 def test_simulate_store_end_to_end(oc4, tmp_path):
     """Rule adapter path: cases.zarr -> map_cases (Dask) -> complete simulations.zarr."""

@@ -60,8 +60,9 @@ def period(x: np.ndarray, dt: float, cycles: int = 3) -> float:
 
 
 def decay(model: sim.ModelInputs, no_drag: sim.ModelInputs) -> list[str]:
-    out = ["| DOF | initial | uncoupled estimate (s) | coupled eigen, linear OC4 stiffness (s) | decay, MS2 catenary, no drag (s) | decay, MS2 catenary + drag (s) | OC4 (s) | error (catenary + drag) |",
-           "|---|---|---|---|---|---|---|---|"]
+    out = ["| DOF | initial | uncoupled estimate (s) | coupled eigen, linear OC4 stiffness (s) | decay, MS2 catenary, no drag (s) "
+           "| decay, MS2 catenary + drag (s) | OC4 (s) | error (catenary + drag) | one DOF, others held: decay (s) | error |",
+           "|---|---|---|---|---|---|---|---|---|---|"]
     lin_model = dataclasses.replace(model, mooring_kind="linear")
     lin = sim.linear_natural_periods(lin_model)
     k = lin_model.stiffness + lin_model.mooring_stiffness
@@ -73,11 +74,12 @@ def decay(model: sim.ModelInputs, no_drag: sim.ModelInputs) -> list[str]:
         q0 = np.zeros((1, 6))
         q0[0, d] = x0
         res = []
-        for m in (no_drag, model):
-            rec = sim.integrate(m, quiet(m, grid), transient=0.0, q0=q0)
+        for m, held in ((no_drag, ()), (model, ()), (model, tuple(i for i in range(6) if i != d))):
+            rec = sim.integrate(m, quiet(m, grid), transient=0.0, q0=q0, locked=held)
             res.append(period(rec.motion[0, d], grid.dt))
-        err = res[1] / OC4_PERIODS[name] - 1
-        out.append(f"| {name} | {label} | {unc[d]:.2f} | {lin[d]:.2f} | {res[0]:.2f} | {res[1]:.2f} | {OC4_PERIODS[name]} | {100 * err:+.1f} % |")
+        err, err1 = res[1] / OC4_PERIODS[name] - 1, res[2] / OC4_PERIODS[name] - 1
+        out.append(f"| {name} | {label} | {unc[d]:.2f} | {lin[d]:.2f} | {res[0]:.2f} | {res[1]:.2f} | {OC4_PERIODS[name]} "
+                   f"| {100 * err:+.1f} % | {res[2]:.2f} | {100 * err1:+.1f} % |")
     return out
 
 

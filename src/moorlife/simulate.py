@@ -36,7 +36,7 @@ Design notes
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -886,6 +886,7 @@ def integrate(
     q0: np.ndarray | None = None,
     v0: np.ndarray | None = None,
     mooring_override: Any | None = None,
+    locked: Sequence[int] = (),
 ) -> Record:
     """Integrate the coupled system over the forcing grid.
 
@@ -899,6 +900,10 @@ def integrate(
         Initial displacement and velocity (default: at rest at the origin).
     mooring_override : object, optional
         A mooring object with ``init/step/tension`` (tests).
+    locked : sequence of int, optional
+        Platform DOFs (0-5, surge..yaw) held at their initial displacement, like the DOF
+        switches of a decay-test set-up: their rows and columns of the inverse mass matrix are
+        zero and the free DOFs use the inverse of their own block. Default: all six free.
 
     Returns
     -------
@@ -921,7 +926,9 @@ def integrate(
     if nf:  # start the filter at its steady state for the initial wind (no start-up kick)
         zf[:] = -np.linalg.solve(model.filt_a, model.filt_b[:, 0])[None, :] * forcing.wind[:, :1]
     ra = _csr(model.rad_a)
-    minv = np.linalg.inv(model.mass)
+    minv = _inverse_mass(model.mass, locked)
+    if np.any(v[:, list(locked)] != 0.0):
+        raise ValueError(f"integrate: v0 must be 0 in the locked DOFs {sorted(locked)}")
     kin = forcing.kinematics
     if kin.shape[2:] != (3, model.strip_pos.shape[0]):
         raise ValueError("forcing kinematics do not match the model strips")
@@ -972,6 +979,24 @@ def integrate(
 # --------------------------------------------------------------------------------------
 # linear analysis (verification)
 # --------------------------------------------------------------------------------------
+
+
+def _free_dofs(locked: Sequence[int]) -> np.ndarray:
+    lk = sorted({int(d) for d in locked})
+    if any(d < 0 or d > 5 for d in lk):
+        raise ValueError(f"locked DOFs {lk}: each must be 0-5 (surge..yaw)")
+    free = np.setdiff1d(np.arange(6), lk)
+    if free.size == 0:
+        raise ValueError("locked DOFs: at least one DOF must stay free")
+    return free
+
+
+def _inverse_mass(mass: np.ndarray, locked: Sequence[int]) -> np.ndarray:
+    """``(6, 6)`` inverse of the free block of ``mass``, zero in the locked rows and columns."""
+    free = _free_dofs(locked)
+    minv = np.zeros((6, 6))
+    minv[np.ix_(free, free)] = np.linalg.inv(np.asarray(mass, dtype=float)[np.ix_(free, free)])
+    return minv
 
 
 def radiation_impedance(model: ModelInputs, omega: np.ndarray) -> np.ndarray:
@@ -1043,25 +1068,31 @@ def frequency_response(
     return out
 
 
-def linear_natural_periods(model: ModelInputs, mooring_stiffness: np.ndarray | None = None) -> np.ndarray:
+def linear_natural_periods(
+    model: ModelInputs, mooring_stiffness: np.ndarray | None = None, locked: Sequence[int] = ()
+) -> np.ndarray:
     """Natural periods (s) of the coupled linear system, one per DOF.
 
     For each DOF the search starts at its uncoupled estimate ``2 pi sqrt((M + a)_dd / K_dd)``
     and iterates the generalised eigenproblem ``(K + K_m) x = w^2 (M + A_inf + a(w)) x`` with
     the frequency-dependent added mass of the model's own radiation memory, following the
     eigenvalue nearest the current frequency (so surge-pitch and sway-roll coupling through the
-    mass matrix is included, as in a decay test). Returns ``(6,)``, ``inf`` without restoring.
+    mass matrix is included, as in a decay test). ``locked`` DOFs are held (see
+    :func:`integrate`): the eigenproblem is that of the free block. Returns ``(6,)``, ``inf``
+    without restoring or for a locked DOF.
     """
     km = model.mooring_stiffness if mooring_stiffness is None else np.asarray(mooring_stiffness)
+    free = _free_dofs(locked)
+    ix = np.ix_(free, free)
     kk = model.stiffness + km
     out = np.full(6, np.inf)
-    for d in range(6):
+    for d in free:
         if kk[d, d] <= 0:
             continue
         w = math.sqrt(kk[d, d] / model.mass[d, d])
         for _ in range(40):
             a = model.mass - radiation_impedance(model, np.array([w]))[0].imag / w
-            ev = scipy.linalg.eigvals(kk, a)
+            ev = scipy.linalg.eigvals(kk[ix], a[ix])
             ws = np.sqrt(np.abs(ev.real))
             w_new = float(ws[np.argmin(np.abs(ws - w))])
             if abs(w_new - w) < 1e-10 * w:
