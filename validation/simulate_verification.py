@@ -59,6 +59,15 @@ def period(x: np.ndarray, dt: float, cycles: int = 3) -> float:
     return float(np.diff(tz[: cycles + 1]).mean() * dt)
 
 
+def free_decay(model: sim.ModelInputs, dof: int, x0: float, duration: float, locked: tuple[int, ...] = ()) -> tuple[np.ndarray, float]:
+    """The DOF's record of a free decay from ``x0`` at rest in calm water, and its time step."""
+    grid = env.record_grid(duration, 0.0, 0.1)
+    q0 = np.zeros((1, 6))
+    q0[0, dof] = x0
+    rec = sim.integrate(model, quiet(model, grid), transient=0.0, q0=q0, locked=locked)
+    return rec.motion[0, dof], grid.dt
+
+
 def decay(model: sim.ModelInputs, no_drag: sim.ModelInputs) -> list[str]:
     out = ["| DOF | initial | uncoupled estimate (s) | coupled eigen, linear OC4 stiffness (s) | decay, MS2 catenary, no drag (s) "
            "| decay, MS2 catenary + drag (s) | OC4 (s) | error (catenary + drag) | one DOF, others held: decay (s) | error |",
@@ -70,13 +79,8 @@ def decay(model: sim.ModelInputs, no_drag: sim.ModelInputs) -> list[str]:
                                     / (2 * math.pi / lin[d])) / k[d, d]) for d in range(6)]
     init = {"surge": (0, 8.0, "8 m"), "heave": (2, 1.5, "1.5 m"), "pitch": (4, math.radians(2.0), "2 deg")}
     for name, (d, x0, label) in init.items():
-        grid = env.record_grid(8 * OC4_PERIODS[name], 0.0, 0.1)
-        q0 = np.zeros((1, 6))
-        q0[0, d] = x0
-        res = []
-        for m, held in ((no_drag, ()), (model, ()), (model, tuple(i for i in range(6) if i != d))):
-            rec = sim.integrate(m, quiet(m, grid), transient=0.0, q0=q0, locked=held)
-            res.append(period(rec.motion[0, d], grid.dt))
+        res = [period(*free_decay(m, d, x0, 8 * OC4_PERIODS[name], held))
+               for m, held in ((no_drag, ()), (model, ()), (model, tuple(i for i in range(6) if i != d)))]
         err, err1 = res[1] / OC4_PERIODS[name] - 1, res[2] / OC4_PERIODS[name] - 1
         out.append(f"| {name} | {label} | {unc[d]:.2f} | {lin[d]:.2f} | {res[0]:.2f} | {res[1]:.2f} | {OC4_PERIODS[name]} "
                    f"| {100 * err:+.1f} % | {res[2]:.2f} | {100 * err1:+.1f} % |")
@@ -95,11 +99,8 @@ def decay_amplitudes(model: sim.ModelInputs) -> list[str]:
              ("sway", 1, 22.0, "+22 m"), ("pitch", 4, math.radians(2.0), "2 deg"), ("pitch", 4, math.radians(8.0), "8 deg")]
     for name, d, x0, label in cases:
         ref = OC4_PERIODS.get(name, 113.6)  # sway: 0.0088 Hz in the code comparison
-        grid = env.record_grid(8 * ref, 0.0, 0.1)
-        q0 = np.zeros((1, 6))
-        q0[0, d] = x0
-        x = sim.integrate(model, quiet(model, grid), transient=0.0, q0=q0).motion[0, d]
-        p1, p3 = period(x, grid.dt, 1), period(x, grid.dt, 3)
+        x, dt = free_decay(model, d, x0, 8 * ref)
+        p1, p3 = period(x, dt, 1), period(x, dt, 3)
         out.append(f"| {name} | {label} | {p1:.2f} | {p3:.2f} | {ref} | {100 * (p3 / ref - 1):+.1f} % |")
     return out
 

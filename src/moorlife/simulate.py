@@ -926,9 +926,11 @@ def integrate(
     if nf:  # start the filter at its steady state for the initial wind (no start-up kick)
         zf[:] = -np.linalg.solve(model.filt_a, model.filt_b[:, 0])[None, :] * forcing.wind[:, :1]
     ra = _csr(model.rad_a)
-    minv = _inverse_mass(model.mass, locked)
-    if np.any(v[:, list(locked)] != 0.0):
-        raise ValueError(f"integrate: v0 must be 0 in the locked DOFs {sorted(locked)}")
+    free = _free_dofs(locked)
+    held = np.setdiff1d(np.arange(6), free)
+    minv = _inverse_mass(model.mass, free)
+    if np.any(v[:, held] != 0.0):
+        raise ValueError(f"integrate: v0 must be 0 in the locked DOFs {held.tolist()}")
     kin = forcing.kinematics
     if kin.shape[2:] != (3, model.strip_pos.shape[0]):
         raise ValueError("forcing kinematics do not match the model strips")
@@ -982,6 +984,7 @@ def integrate(
 
 
 def _free_dofs(locked: Sequence[int]) -> np.ndarray:
+    """The DOFs not in ``locked``, ``(nfree,)`` sorted; ``locked`` is validated and read once."""
     lk = sorted({int(d) for d in locked})
     if any(d < 0 or d > 5 for d in lk):
         raise ValueError(f"locked DOFs {lk}: each must be 0-5 (surge..yaw)")
@@ -991,9 +994,8 @@ def _free_dofs(locked: Sequence[int]) -> np.ndarray:
     return free
 
 
-def _inverse_mass(mass: np.ndarray, locked: Sequence[int]) -> np.ndarray:
-    """``(6, 6)`` inverse of the free block of ``mass``, zero in the locked rows and columns."""
-    free = _free_dofs(locked)
+def _inverse_mass(mass: np.ndarray, free: np.ndarray) -> np.ndarray:
+    """``(6, 6)`` inverse of the ``free`` block of ``mass``, zero in the other rows and columns."""
     minv = np.zeros((6, 6))
     minv[np.ix_(free, free)] = np.linalg.inv(np.asarray(mass, dtype=float)[np.ix_(free, free)])
     return minv
