@@ -77,6 +77,47 @@ def test_heave_plate_cap_is_annulus():
     np.testing.assert_allclose(area[bottom].sum(), np.pi * 144, rtol=0.01)
 
 
+def _centres_and_areas(v, f):
+    p = v[f]
+    tri = f[:, 2] == f[:, 3]
+    cross = np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 1])
+    cross[tri] = np.cross(p[tri, 1] - p[tri, 0], p[tri, 2] - p[tri, 0])
+    return p.mean(axis=1), 0.5 * np.linalg.norm(cross, axis=1)
+
+
+def test_brace_joins_column_as_one_closed_solid():
+    """A brace ending on a column wall (HydroDyn joints) is meshed as the union of the two
+    solids: no panel inside either member, no enclosed water, volume of the two together."""
+    pytest.importorskip("capytaine")
+    col = _column(d=12.0, z0=-20.0, z1=5.0)
+    brace = hydro.Member("br", "brace", np.array([6.0, 0.0, -10.0]), np.array([30.0, 0.0, -10.0]), 1.6, 0.63)
+    a, b, closed_a, closed_b = hydro.brace_extent(brace, [col])
+    assert closed_a and not closed_b
+    np.testing.assert_allclose(a, [0.0, 0.0, -10.0])  # pushed one column radius into the column
+    v, f = hydro.hull_panels([col, brace], 0.5)
+    c, _ = _centres_and_areas(v, f)
+    r_col = np.hypot(c[:, 0], c[:, 1])
+    r_brace = np.hypot(c[:, 1], c[:, 2] + 10.0)
+    assert not np.any((r_col < 6.0 - 0.05) & (c[:, 2] < -0.05) & (c[:, 2] > -19.95))
+    assert not np.any((r_brace < 0.8 - 0.05) & (c[:, 0] > 0.05) & (c[:, 0] < 29.95))
+    body = hydro.capytaine_body([col, brace], panel_size=0.5, lid=False)
+    nominal = np.pi * 36.0 * 20.0 + np.pi * 0.64 * 24.0  # column + brace outside it; free end capped
+    np.testing.assert_allclose(body.volume, nominal, rtol=3e-3)
+
+
+def test_brace_between_two_columns_has_no_cap():
+    col1 = _column(d=12.0, xy=(0.0, 0.0))
+    col2 = _column(d=12.0, xy=(40.0, 0.0))
+    brace = hydro.Member("br", "brace", np.array([6.0, 0.0, -10.0]), np.array([34.0, 0.0, -10.0]), 1.6, 0.63)
+    a, b, closed_a, closed_b = hydro.brace_extent(brace, [col1, col2])
+    assert closed_a and closed_b
+    v, f = hydro.hull_panels([col1, col2, brace], 0.5)
+    c, area = _centres_and_areas(v, f)
+    # brace wall only between the column walls: area pi D (40 - 2 * 6), no cap facing +-x
+    on_brace = (np.hypot(c[:, 1], c[:, 2] + 10.0) < 1.0) & (c[:, 0] > 6.05) & (c[:, 0] < 33.95)
+    np.testing.assert_allclose(area[on_brace].sum(), np.pi * 1.6 * 28.0, rtol=0.02)
+
+
 def test_members_from_config_errors():
     good = {"name": "m", "kind": "column", "a": [0, 0, -1], "b": [0, 0, 1], "diameter": 2.0, "cd": 0.6}
     with pytest.raises(ValueError, match=r"p\.yaml: members\[0\] \(m\): kind = 'pipe'"):
