@@ -105,6 +105,14 @@ def test_brace_joins_column_as_one_closed_solid():
     np.testing.assert_allclose(body.volume, nominal, rtol=3e-3)
 
 
+def test_brace_grazing_a_column_is_refused():
+    col = _column(d=12.0, z0=-20.0, z1=5.0)
+    # ends on the wall at (6, 0, -10) but runs almost along it
+    brace = hydro.Member("graze", "brace", np.array([6.0, 0.0, -10.0]), np.array([6.5, 30.0, -10.0]), 1.6, 0.63)
+    with pytest.raises(ValueError, match=r"brace 'graze'.*column 'c'.*leaves it"):
+        hydro.brace_extent(brace, [col])
+
+
 def test_brace_between_two_columns_has_no_cap():
     col1 = _column(d=12.0, xy=(0.0, 0.0))
     col2 = _column(d=12.0, xy=(40.0, 0.0))

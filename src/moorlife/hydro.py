@@ -352,6 +352,12 @@ def brace_extent(brace: Member, columns: Sequence[Member]) -> tuple[np.ndarray, 
         ``(3,)`` meshed end points, m.
     closed_a, closed_b : bool
         True where the end is inside a column.
+
+    Raises
+    ------
+    ValueError
+        Naming the brace and the column, if the pushed end leaves the column under water (a
+        brace that grazes a column, or a column shorter than the push).
     """
     e = brace.axis
     out = []
@@ -359,7 +365,15 @@ def brace_extent(brace: Member, columns: Sequence[Member]) -> tuple[np.ndarray, 
         host = [c for c in columns if _inside_column(end[None, :], c, tol=-1e-3 * c.radius)[0]]
         if host:
             c = max(host, key=lambda c: c.radius)
-            out.append((end + sign * c.radius * e, True))
+            pushed = end + sign * c.radius * e
+            if pushed[2] < 0.0 and not _inside_column(pushed[None, :], c)[0]:  # above water: clipped
+                raise ValueError(
+                    f"brace {brace.name!r}: its end {end.round(3).tolist()} on column {c.name!r}, pushed "
+                    f"{c.radius:g} m into the column along the brace, leaves it at "
+                    f"{pushed.round(3).tolist()}: the mesher joins braces that enter a column "
+                    "steeply enough to stay inside it for one column radius"
+                )
+            out.append((pushed, True))
         else:
             out.append((end, False))
     (a, closed_a), (b, closed_b) = out
