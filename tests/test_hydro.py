@@ -59,30 +59,29 @@ def test_symmetry_refused_for_asymmetric_hull():
         hydro.capytaine_body([_column(xy=(20.0, 0.0))], panel_size=2.0, rotational_symmetry=3, lid=False)
 
 
+def _centres_and_area_vectors(v, f):
+    """Panel centres ``(nf, 3)`` and area vectors ``(nf, 3)`` (area times outward normal);
+    a triangle repeats its last vertex."""
+    p = v[f]
+    tri = f[:, 2] == f[:, 3]
+    cross = np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 1])
+    cross[tri] = np.cross(p[tri, 1] - p[tri, 0], p[tri, 2] - p[tri, 0])
+    return p.mean(axis=1), 0.5 * cross
+
+
 def test_heave_plate_cap_is_annulus():
     """A D24 base under a D12 column: the cap at their joint is the 24-12 annulus only."""
     base = hydro.Member("b", "column", np.array([0, 0, -20.0]), np.array([0, 0, -14.0]), 24.0, 0.7, 9.6)
     col = hydro.Member("u", "column", np.array([0, 0, -14.0]), np.array([0, 0, 10.0]), 12.0, 0.6)
     v, f = hydro.hull_panels([base, col], 1.0)
-    tri = f[:, 2] == f[:, 3]
-    p = v[f]
-    cross = np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 1])
-    cross[tri] = np.cross(p[tri, 1] - p[tri, 0], p[tri, 2] - p[tri, 0])
-    area = 0.5 * np.linalg.norm(cross, axis=1)
-    cz = p.mean(axis=1)[:, 2]
-    up = cross[:, 2] > 0
+    c, area_vec = _centres_and_area_vectors(v, f)
+    area = np.linalg.norm(area_vec, axis=1)
+    cz = c[:, 2]
+    up = area_vec[:, 2] > 0
     top = np.isclose(cz, -14.0) & up
     np.testing.assert_allclose(area[top].sum(), np.pi * (144 - 36), rtol=0.01)
     bottom = np.isclose(cz, -20.0) & ~up
     np.testing.assert_allclose(area[bottom].sum(), np.pi * 144, rtol=0.01)
-
-
-def _centres_and_areas(v, f):
-    p = v[f]
-    tri = f[:, 2] == f[:, 3]
-    cross = np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 1])
-    cross[tri] = np.cross(p[tri, 1] - p[tri, 0], p[tri, 2] - p[tri, 0])
-    return p.mean(axis=1), 0.5 * np.linalg.norm(cross, axis=1)
 
 
 def test_brace_joins_column_as_one_closed_solid():
@@ -95,7 +94,7 @@ def test_brace_joins_column_as_one_closed_solid():
     assert closed_a and not closed_b
     np.testing.assert_allclose(a, [0.0, 0.0, -10.0])  # pushed one column radius into the column
     v, f = hydro.hull_panels([col, brace], 0.5)
-    c, _ = _centres_and_areas(v, f)
+    c, _ = _centres_and_area_vectors(v, f)
     r_col = np.hypot(c[:, 0], c[:, 1])
     r_brace = np.hypot(c[:, 1], c[:, 2] + 10.0)
     assert not np.any((r_col < 6.0 - 0.05) & (c[:, 2] < -0.05) & (c[:, 2] > -19.95))
@@ -120,7 +119,8 @@ def test_brace_between_two_columns_has_no_cap():
     a, b, closed_a, closed_b = hydro.brace_extent(brace, [col1, col2])
     assert closed_a and closed_b
     v, f = hydro.hull_panels([col1, col2, brace], 0.5)
-    c, area = _centres_and_areas(v, f)
+    c, area_vec = _centres_and_area_vectors(v, f)
+    area = np.linalg.norm(area_vec, axis=1)
     # brace wall only between the column walls: area pi D (40 - 2 * 6), no cap facing +-x
     on_brace = (np.hypot(c[:, 1], c[:, 2] + 10.0) < 1.0) & (c[:, 0] > 6.05) & (c[:, 0] < 33.95)
     np.testing.assert_allclose(area[on_brace].sum(), np.pi * 1.6 * 28.0, rtol=0.02)

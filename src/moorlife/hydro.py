@@ -311,13 +311,6 @@ def _concat(parts):
 BRACE_PANELS_AROUND = 12
 
 
-def _inside_column(points: np.ndarray, col: Member, tol: float = 1e-6, grow: float = 0.0) -> np.ndarray:
-    """``(n,)`` True where ``points (n, 3)`` lie strictly inside the solid vertical cylinder
-    ``col``, its radius grown by ``grow`` m."""
-    r = np.hypot(points[:, 0] - col.a[0], points[:, 1] - col.a[1])
-    return (r < col.radius + grow - tol) & (points[:, 2] > col.a[2] + tol) & (points[:, 2] < col.b[2] - tol)
-
-
 def _inside_cylinder(points: np.ndarray, a: np.ndarray, b: np.ndarray, radius: float,
                      tol: float = 1e-6) -> np.ndarray:
     """``(n,)`` True where ``points (n, 3)`` lie strictly inside the solid cylinder ``a -> b``."""
@@ -328,13 +321,22 @@ def _inside_cylinder(points: np.ndarray, a: np.ndarray, b: np.ndarray, radius: f
     return (d < radius - tol) & (s > tol) & (s < length - tol)
 
 
-def _covered(centre_inside: np.ndarray, corner_inside: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """``(nf,)`` True for the panels another member covers: centre inside it (``centre_inside``,
-    ``(nf,)``) and every corner inside it grown by the smaller member's radius
-    (``corner_inside``, ``(nv,)``). The corner condition keeps panels much larger than the
-    junction (coarse meshes): removing them would open a hole into the body, keeping them
-    only leaves an overlap."""
-    return centre_inside & corner_inside[faces].all(axis=1)
+def _drop_covered(vertices: np.ndarray, faces: np.ndarray,
+                  solids: Sequence[tuple[np.ndarray, np.ndarray, float, float]]) -> np.ndarray:
+    """``faces`` without the panels another member covers.
+
+    ``solids`` holds cylinders ``(a, b, radius, margin)``. A panel is covered when its centre
+    is inside one of them and every corner is inside the same one grown by ``margin`` (the
+    smaller member's radius). The corner condition keeps panels much larger than the junction
+    (coarse meshes): removing them would open a hole into the body, keeping them only leaves
+    an overlap.
+    """
+    centres = vertices[faces].mean(axis=1)
+    covered = np.zeros(len(faces), dtype=bool)
+    for a, b, radius, margin in solids:
+        covered |= (_inside_cylinder(centres, a, b, radius)
+                    & _inside_cylinder(vertices, a, b, radius + margin)[faces].all(axis=1))
+    return faces[~covered]
 
 
 def brace_extent(brace: Member, columns: Sequence[Member]) -> tuple[np.ndarray, np.ndarray, bool, bool]:
@@ -362,11 +364,11 @@ def brace_extent(brace: Member, columns: Sequence[Member]) -> tuple[np.ndarray, 
     e = brace.axis
     out = []
     for end, sign in ((brace.a, -1.0), (brace.b, 1.0)):
-        host = [c for c in columns if _inside_column(end[None, :], c, tol=-1e-3 * c.radius)[0]]
+        host = [c for c in columns if _inside_cylinder(end[None, :], c.a, c.b, c.radius, tol=-1e-3 * c.radius)[0]]
         if host:
             c = max(host, key=lambda c: c.radius)
             pushed = end + sign * c.radius * e
-            if pushed[2] < 0.0 and not _inside_column(pushed[None, :], c)[0]:  # above water: clipped
+            if pushed[2] < 0.0 and not _inside_cylinder(pushed[None, :], c.a, c.b, c.radius)[0]:  # above: clipped
                 raise ValueError(
                     f"brace {brace.name!r}: its end {end.round(3).tolist()} on column {c.name!r}, pushed "
                     f"{c.radius:g} m into the column along the brace, leaves it at "
@@ -412,41 +414,31 @@ def hull_panels(members: Sequence[Member], panel_size: float):
     cols = [m for m in members if m.kind == "column"]
     braces = [(m, *brace_extent(m, cols)) for m in members if m.kind == "brace" and min(m.a[2], m.b[2]) < 0.0]
     parts = []
-    for m in members:
-        if min(m.a[2], m.b[2]) >= 0.0:
+    brace_solids = [(a, b, br.radius, br.radius) for br, a, b, _, _ in braces]
+    for m in cols:
+        if m.a[2] >= 0.0:
             continue
-        if m.kind == "column":
-            top = min(m.b[2], 0.0)
-            nt = n_around(m.radius, panel_size)
-            col_parts = [wall_panels(m.a, np.array([m.a[0], m.a[1], top]), m.radius, panel_size, nt)]
-            for end, up in ((m.a, False), (m.b, True)):
-                if end[2] >= 0.0:
-                    continue
-                # coaxial column continuing from this end on the other side
-                others = [o for o in cols if o is not m and np.allclose(o.a[:2], m.a[:2])
-                          and np.isclose((o.a if up else o.b)[2], end[2])]
-                r_cover = max((o.radius for o in others), default=0.0)
-                if r_cover >= m.radius:
-                    continue
-                col_parts.append(annulus_panels(end, r_cover, m.radius, panel_size, up, nt))
-            for v, f in col_parts:
-                c = v[f].mean(axis=1)
-                inside = np.zeros(len(f), dtype=bool)
-                for br, a, b, _, _ in braces:
-                    r = br.radius
-                    inside |= _covered(_inside_cylinder(c, a, b, r), _inside_cylinder(v, a, b, 2 * r), f)
-                parts.append((v, f[~inside]))
+        top = min(m.b[2], 0.0)
+        nt = n_around(m.radius, panel_size)
+        col_parts = [wall_panels(m.a, np.array([m.a[0], m.a[1], top]), m.radius, panel_size, nt)]
+        for end, up in ((m.a, False), (m.b, True)):
+            if end[2] >= 0.0:
+                continue
+            # coaxial column continuing from this end on the other side
+            others = [o for o in cols if o is not m and np.allclose(o.a[:2], m.a[:2])
+                      and np.isclose((o.a if up else o.b)[2], end[2])]
+            r_cover = max((o.radius for o in others), default=0.0)
+            if r_cover >= m.radius:
+                continue
+            col_parts.append(annulus_panels(end, r_cover, m.radius, panel_size, up, nt))
+        parts += [(v, _drop_covered(v, f, brace_solids)) for v, f in col_parts]
     for m, a, b, closed_a, closed_b in braces:
         nt = n_around(m.radius, panel_size, minimum=BRACE_PANELS_AROUND)
-        v, f = wall_panels(a, b, m.radius, panel_size, nt)
         caps = [_disk_panels(p, s * m.axis, m.radius, panel_size, nt)
                 for p, s, closed in ((a, -1.0, closed_a), (b, 1.0, closed_b)) if not closed and p[2] < 0.0]
-        for v_, f_ in [(v, f), *caps]:
-            c = v_[f_].mean(axis=1)
-            inside = np.zeros(len(f_), dtype=bool)
-            for col in cols:
-                inside |= _covered(_inside_column(c, col), _inside_column(v_, col, grow=m.radius), f_)
-            parts.append(_clip_below(v_, f_[~inside]))
+        column_solids = [(col.a, col.b, col.radius, m.radius) for col in cols]
+        parts += [_clip_below(v, _drop_covered(v, f, column_solids))
+                  for v, f in [wall_panels(a, b, m.radius, panel_size, nt), *caps]]
     if not parts:
         raise ValueError("no member is below the still-water line: nothing to mesh")
     return _concat(parts)
