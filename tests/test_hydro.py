@@ -84,6 +84,31 @@ def test_heave_plate_cap_is_annulus():
     np.testing.assert_allclose(area[bottom].sum(), np.pi * 144, rtol=0.01)
 
 
+def test_around_refinement_refines_around_only():
+    """``around`` multiplies the panels around every member and leaves the rows along them;
+    the lid rim keeps matching the column polygon at the water line."""
+    base = hydro.Member("b", "column", np.array([0, 0, -20.0]), np.array([0, 0, -14.0]), 24.0, 0.7, 9.6)
+    col = hydro.Member("u", "column", np.array([0, 0, -14.0]), np.array([0, 0, 10.0]), 12.0, 0.6)
+    v1, f1 = hydro.hull_panels([base, col], 1.2)
+    np.testing.assert_array_equal(f1, hydro.hull_panels([base, col], 1.2, around=1.0)[1])
+    v2, f2 = hydro.hull_panels([base, col], 1.2, around=2.0)
+    for v, f, k in ((v1, f1, 1), (v2, f2, 2)):
+        c, area_vec = _centres_and_area_vectors(v, f)
+        wall = np.abs(area_vec[:, 2]) < 1e-9 * np.linalg.norm(area_vec, axis=1)
+        upper = wall & (c[:, 2] > -14.0)
+        assert np.unique(np.round(c[upper, 2], 6)).size == 12  # 14 m in 1.2 m rows, either way
+        assert np.sum(upper) == 12 * k * hydro.n_around(6.0, 1.2)
+        np.testing.assert_allclose(np.linalg.norm(area_vec, axis=1).sum(),
+                                   2 * np.pi * (6 * 14 + 12 * 6) + np.pi * 144 * 2 - np.pi * 36, rtol=0.01)
+    lv, lf = hydro.lid_panels([base, col], 1.2, around=2.0)
+    rim = lv[np.isclose(np.hypot(lv[:, 0], lv[:, 1]), np.hypot(lv[:, 0], lv[:, 1]).max())]
+    top = v2[np.isclose(v2[:, 2], 0.0)]
+    assert len(rim) == len(top) == 2 * hydro.n_around(6.0, 1.2)
+    np.testing.assert_allclose(np.sort(np.arctan2(rim[:, 1], rim[:, 0])), np.sort(np.arctan2(top[:, 1], top[:, 0])), atol=1e-12)
+    with pytest.raises(ValueError, match="around must be > 0"):
+        hydro.hull_panels([base, col], 1.2, around=0.0)
+
+
 def test_brace_joins_column_as_one_closed_solid():
     """A brace ending on a column wall (HydroDyn joints) is meshed as the union of the two
     solids: no panel inside either member, no enclosed water, volume of the two together."""
@@ -406,6 +431,9 @@ def test_bem_settings_change_only_with_bem_inputs(platform_cfg):
     assert hydro.bem_settings(cfg["hydro"], {**platform_cfg, "members": members}) != base
     coarse = {**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "resolution": "coarse"}}
     assert hydro.bem_settings(coarse, platform_cfg)["panel_size"] == 6.0
+    assert base["around_refinement"] == 1.0
+    finer = {**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "around_refinement": 2.0}}
+    assert hydro.bem_settings(finer, platform_cfg)["around_refinement"] == 2.0
     with pytest.raises(ValueError, match="hydro.mesh.resolution = 'medium'"):
         hydro.bem_settings({**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "resolution": "medium"}}, platform_cfg)
 

@@ -390,7 +390,7 @@ def _disk_panels(centre: np.ndarray, normal: np.ndarray, radius: float, panel_si
     return centre + verts @ basis, faces
 
 
-def hull_panels(members: Sequence[Member], panel_size: float):
+def hull_panels(members: Sequence[Member], panel_size: float, around: float = 1.0):
     """Panels of the wetted hull (below z = 0) of a platform.
 
     Columns are closed by their end caps (an annulus where a narrower coaxial column
@@ -404,6 +404,11 @@ def hull_panels(members: Sequence[Member], panel_size: float):
     members : sequence of Member
     panel_size : float
         Target panel edge length in m.
+    around : float
+        Circumferential refinement: every member gets ``around`` times as many panels around
+        as ``panel_size`` gives (panels ``panel_size / around`` wide, ``panel_size`` long).
+        The surge added mass converges with the number of panels around, not along
+        (``validation/hydro.md``, section 0b).
 
     Returns
     -------
@@ -411,6 +416,8 @@ def hull_panels(members: Sequence[Member], panel_size: float):
     """
     if not panel_size > 0:
         raise ValueError(f"panel_size must be > 0, got {panel_size!r}")
+    if not around > 0:
+        raise ValueError(f"around must be > 0, got {around!r}")
     cols = [m for m in members if m.kind == "column"]
     braces = [(m, *brace_extent(m, cols)) for m in members if m.kind == "brace" and min(m.a[2], m.b[2]) < 0.0]
     parts = []
@@ -419,7 +426,7 @@ def hull_panels(members: Sequence[Member], panel_size: float):
         if m.a[2] >= 0.0:
             continue
         top = min(m.b[2], 0.0)
-        nt = n_around(m.radius, panel_size)
+        nt = n_around(m.radius, panel_size / around)
         col_parts = [wall_panels(m.a, np.array([m.a[0], m.a[1], top]), m.radius, panel_size, nt)]
         for end, up in ((m.a, False), (m.b, True)):
             if end[2] >= 0.0:
@@ -433,7 +440,7 @@ def hull_panels(members: Sequence[Member], panel_size: float):
             col_parts.append(annulus_panels(end, r_cover, m.radius, panel_size, up, nt))
         parts += [(v, _drop_covered(v, f, brace_solids)) for v, f in col_parts]
     for m, a, b, closed_a, closed_b in braces:
-        nt = n_around(m.radius, panel_size, minimum=BRACE_PANELS_AROUND)
+        nt = n_around(m.radius, panel_size / around, minimum=BRACE_PANELS_AROUND)
         caps = [_disk_panels(p, s * m.axis, m.radius, panel_size, nt)
                 for p, s, closed in ((a, -1.0, closed_a), (b, 1.0, closed_b)) if not closed and p[2] < 0.0]
         column_solids = [(col.a, col.b, col.radius, m.radius) for col in cols]
@@ -444,14 +451,17 @@ def hull_panels(members: Sequence[Member], panel_size: float):
     return _concat(parts)
 
 
-def lid_panels(members: Sequence[Member], panel_size: float, z: float = 0.0):
+def lid_panels(members: Sequence[Member], panel_size: float, z: float = 0.0, around: float = 1.0):
     """Panels of the interior free surface (lid) of every column crossing the water line.
+
+    ``around`` as in :func:`hull_panels`, so that the lid rim matches the column polygon.
 
     Used for irregular-frequency removal. Braces are not lidded (their waterplane is < 2 %).
     Returns ``(vertices (nv, 3), faces (nf, 4))`` with normals pointing down (into the body).
     """
     parts = [
-        annulus_panels([m.a[0], m.a[1], z], 0.0, m.radius, panel_size, False, n_around(m.radius, panel_size))
+        annulus_panels([m.a[0], m.a[1], z], 0.0, m.radius, panel_size, False,
+                       n_around(m.radius, panel_size / around))
         for m in members
         if m.kind == "column" and m.a[2] < z < m.b[2]
     ]
@@ -473,6 +483,7 @@ def capytaine_body(
     *,
     rotational_symmetry: int | None = None,
     lid: bool = True,
+    around: float = 1.0,
 ):
     """The wetted hull as a ``capytaine.FloatingBody`` with six rigid-body dofs about the origin.
 
@@ -487,6 +498,8 @@ def capytaine_body(
         n-fold symmetric is refused.
     lid : bool
         Add an interior free-surface lid (irregular-frequency removal).
+    around : float
+        Circumferential refinement (:func:`hull_panels`).
 
     Raises
     ------
@@ -495,8 +508,8 @@ def capytaine_body(
     """
     import capytaine as cpt
 
-    hull = _to_mesh(*hull_panels(members, panel_size), name="hull")
-    lid_mesh = _to_mesh(*lid_panels(members, panel_size), name="lid") if lid else None
+    hull = _to_mesh(*hull_panels(members, panel_size, around), name="hull")
+    lid_mesh = _to_mesh(*lid_panels(members, panel_size, around=around), name="lid") if lid else None
     if rotational_symmetry:
         n = int(rotational_symmetry)
         sym = cpt.RotationSymmetricMesh(hull.extract_wedge(n), n=n, name="hull")
@@ -585,6 +598,7 @@ def bem_settings(hydro_cfg: Mapping, platform_cfg: Mapping) -> dict:
         "omega": dict(hydro_cfg["omega"]),
         "heading_step": float(hydro_cfg["heading_step"]),
         "panel_size": float(sizes[res]),
+        "around_refinement": float(hydro_cfg["mesh"].get("around_refinement", 1.0)),
         "richardson": bool(hydro_cfg["mesh"].get("richardson", False)),
         "rotational_symmetry": hydro_cfg["mesh"].get("rotational_symmetry"),
         "irregular_frequency_removal": bool(hydro_cfg["irregular_frequency_removal"]),
@@ -1507,13 +1521,15 @@ def _bem_one_mesh(settings: Mapping, panel_size: float, n_jobs: int) -> xr.Datas
     headings = heading_grid(settings["heading_step"])
     M, mtot, cg = system_mass_properties(settings["bodies"], "hydro params")
     body = capytaine_body(members, panel_size, rotational_symmetry=settings.get("rotational_symmetry"),
-                          lid=settings["irregular_frequency_removal"])
+                          lid=settings["irregular_frequency_removal"],
+                          around=float(settings.get("around_refinement", 1.0)))
     rho, g, h = float(env["rho_water"]), float(env["gravity"]), float(env["water_depth"])
     Ch = np.asarray(body.compute_hydrostatic_stiffness(rho=rho, g=g).values, dtype=float)
     C = Ch + gravity_stiffness(mtot, cg, g) + np.diag(np.asarray(settings["mooring_stiffness_diag"], dtype=float))
     ds = run_bem(body, omega, headings, water_depth=h, rho=rho, g=g, mass_matrix=M, stiffness=C,
                  n_kochin=settings["kochin_directions"], n_jobs=n_jobs)
     ds.attrs.update({"panel_size": float(panel_size),
+                     "around_refinement": float(settings.get("around_refinement", 1.0)),
                      "rotational_symmetry": int(settings.get("rotational_symmetry") or 0),
                      "irregular_frequency_removal": int(bool(settings["irregular_frequency_removal"]))})
     return ds
