@@ -590,6 +590,10 @@ def bem_settings(hydro_cfg: Mapping, platform_cfg: Mapping) -> dict:
     sizes = hydro_cfg["mesh"]["panel_size"]
     if res not in sizes:
         raise ValueError(f"hydro.mesh.resolution = {res!r} is not one of hydro.mesh.panel_size {sorted(sizes)}")
+    around = float(hydro_cfg["mesh"].get("around_refinement", 1.0))
+    # omitted at its default 1.0: the mesh is then the one from before the option existed, and
+    # the settings (the rule's params) of existing runs stay valid, so no BEM reruns for nothing
+    extra = {"around_refinement": around} if around != 1.0 else {}
     return {
         "source": hydro_cfg["source"],
         "wamit_prefix": hydro_cfg.get("wamit_prefix"),
@@ -598,13 +602,13 @@ def bem_settings(hydro_cfg: Mapping, platform_cfg: Mapping) -> dict:
         "omega": dict(hydro_cfg["omega"]),
         "heading_step": float(hydro_cfg["heading_step"]),
         "panel_size": float(sizes[res]),
-        "around_refinement": float(hydro_cfg["mesh"].get("around_refinement", 1.0)),
         "richardson": bool(hydro_cfg["mesh"].get("richardson", False)),
         "rotational_symmetry": hydro_cfg["mesh"].get("rotational_symmetry"),
         "irregular_frequency_removal": bool(hydro_cfg["irregular_frequency_removal"]),
         "kochin_directions": int(hydro_cfg["kochin_directions"]),
         "bodies": {k: dict(platform_cfg[k]) for k in ("platform", "tower", "rna")},
         "mooring_stiffness_diag": list(platform_cfg.get("mooring_stiffness_diag", [0.0] * 6)),
+        **extra,
     }
 
 
