@@ -100,7 +100,7 @@ def test_around_refinement_refines_around_only():
         assert np.sum(upper) == 12 * k * hydro.n_around(6.0, 1.2)
         np.testing.assert_allclose(np.linalg.norm(area_vec, axis=1).sum(),
                                    2 * np.pi * (6 * 14 + 12 * 6) + np.pi * 144 * 2 - np.pi * 36, rtol=0.01)
-    lv, lf = hydro.lid_panels([base, col], 1.2, around=2.0)
+    lv, _ = hydro.lid_panels([base, col], 1.2, around=2.0)
     rim = lv[np.isclose(np.hypot(lv[:, 0], lv[:, 1]), np.hypot(lv[:, 0], lv[:, 1]).max())]
     top = v2[np.isclose(v2[:, 2], 0.0)]
     assert len(rim) == len(top) == 2 * hydro.n_around(6.0, 1.2)

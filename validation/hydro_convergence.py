@@ -6,8 +6,8 @@ e.g. ``1.2:1 1.2:2 0.85:1``. Each case meshes the `config/platform.yaml` hull wi
 ``hull_panels(members, SIZE, around=AROUND)`` (lid on, 3-fold symmetry, as the ``hydro`` rule)
 and solves the surge and heave radiation problems at infinite frequency, at 0.06 rad/s (the
 surge decay) and at 1.2 rad/s (the heave damping peak). It prints one markdown row a case with
-A11, A33 and B33 against WAMIT's ``marin_semi`` values (rho 1025 kg/m3, copied here: tests and
-scripts must not read ../shared). Several minutes a case at 1 m panels on one core.
+A11, A33 and B33 against WAMIT's ``marin_semi`` values (rho 1025 kg/m3; the four figures are
+copied below so that the script needs only the repository). Several minutes a case at 1 m panels on one core.
 """
 
 from __future__ import annotations

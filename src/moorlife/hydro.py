@@ -1524,16 +1524,16 @@ def _bem_one_mesh(settings: Mapping, panel_size: float, n_jobs: int) -> xr.Datas
     omega = frequency_grid(om["min"], om["max"], om["n"])
     headings = heading_grid(settings["heading_step"])
     M, mtot, cg = system_mass_properties(settings["bodies"], "hydro params")
+    around = float(settings.get("around_refinement", 1.0))  # omitted at its default (bem_settings)
     body = capytaine_body(members, panel_size, rotational_symmetry=settings.get("rotational_symmetry"),
-                          lid=settings["irregular_frequency_removal"],
-                          around=float(settings.get("around_refinement", 1.0)))
+                          lid=settings["irregular_frequency_removal"], around=around)
     rho, g, h = float(env["rho_water"]), float(env["gravity"]), float(env["water_depth"])
     Ch = np.asarray(body.compute_hydrostatic_stiffness(rho=rho, g=g).values, dtype=float)
     C = Ch + gravity_stiffness(mtot, cg, g) + np.diag(np.asarray(settings["mooring_stiffness_diag"], dtype=float))
     ds = run_bem(body, omega, headings, water_depth=h, rho=rho, g=g, mass_matrix=M, stiffness=C,
                  n_kochin=settings["kochin_directions"], n_jobs=n_jobs)
     ds.attrs.update({"panel_size": float(panel_size),
-                     "around_refinement": float(settings.get("around_refinement", 1.0)),
+                     "around_refinement": around,
                      "rotational_symmetry": int(settings.get("rotational_symmetry") or 0),
                      "irregular_frequency_removal": int(bool(settings["irregular_frequency_removal"]))})
     return ds
