@@ -71,6 +71,7 @@ __all__ = [
     "rotation_matrix",
     "frequency_response",
     "linear_natural_periods",
+    "without_radiation_memory",
     "radiation_impedance",
     "effective_added_mass_inf",
     "static_equilibrium",
@@ -999,6 +1000,18 @@ def _inverse_mass(mass: np.ndarray, free: np.ndarray) -> np.ndarray:
     minv = np.zeros((6, 6))
     minv[np.ix_(free, free)] = np.linalg.inv(np.asarray(mass, dtype=float)[np.ix_(free, free)])
     return minv
+
+
+def without_radiation_memory(model: ModelInputs) -> ModelInputs:
+    """The model with its radiation memory removed: constant added mass ``A_inf``, no wave damping.
+
+    This is the convention of published natural periods such as the OC4 definition's
+    (``T = 2 pi sqrt((M + A_inf) / C)``, the added mass of FAST's linearisation), used to check a
+    decay test against them like for like; the simulation itself always keeps the memory. The
+    linear and viscous damping, the mooring and everything else are unchanged.
+    """
+    return replace(model, rad_a=np.zeros((0, 0)), rad_b=np.zeros((0, 6)), rad_c=np.zeros((6, 0)),
+                   kernel=np.zeros((0, 0)), kernel_pairs=np.zeros((0, 2), dtype=np.int64), kernel_dt=0.0)
 
 
 def radiation_impedance(model: ModelInputs, omega: np.ndarray) -> np.ndarray:
