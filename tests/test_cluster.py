@@ -73,10 +73,11 @@ def external_cluster(tmp_path):
             time.sleep(0.5)
         yield addr, procs
     finally:
-        for p in procs:
+        # workers first, while their scheduler is still there to take their goodbye (a worker
+        # whose scheduler is gone retries for about 20 s before it exits), then the scheduler
+        for p in procs[1:] + procs[:1]:
             if p.poll() is None:
                 p.terminate()
-        for p in procs:
             try:
                 p.wait(timeout=20)
             except subprocess.TimeoutExpired:
