@@ -47,7 +47,6 @@ import scipy.linalg
 
 from moorlife import environment as env
 from moorlife import names
-from moorlife.mooring.dynamic import _FASTMATH
 from moorlife.mooring.dynamic import _step_batch as _dyn_step_batch
 from moorlife.mooring.quasistatic import _fairlead_forces as _qs_fairlead_forces
 
@@ -432,7 +431,7 @@ def rotation_matrix(rot: np.ndarray) -> np.ndarray:
     return out
 
 
-@numba.njit(cache=True, inline="always", fastmath=_FASTMATH)
+@numba.njit(cache=True, inline="always")
 def _rotation_entries(roll, pitch, yaw):  # pragma: no cover - numba
     """The nine entries of ``Rz(yaw) Ry(pitch) Rx(roll)``, row by row."""
     cr, sr = math.cos(roll), math.sin(roll)
@@ -443,7 +442,7 @@ def _rotation_entries(roll, pitch, yaw):  # pragma: no cover - numba
             -sp, cp * sr, cp * cr)
 
 
-@numba.njit(cache=True, fastmath=_FASTMATH)
+@numba.njit(cache=True)
 def _rotation(rot, out):  # pragma: no cover - numba
     for i in range(rot.shape[0]):
         e = _rotation_entries(rot[i, 0], rot[i, 1], rot[i, 2])
@@ -452,7 +451,7 @@ def _rotation(rot, out):  # pragma: no cover - numba
         out[i, 2, 0], out[i, 2, 1], out[i, 2, 2] = e[6], e[7], e[8]
 
 
-@numba.njit(cache=True, inline="always", fastmath=_FASTMATH)
+@numba.njit(cache=True, inline="always")
 def _rotated(q, b, f):  # pragma: no cover - numba
     """``R(q[b, 3:6]) f`` for a 3-vector ``f`` (the matrix of :func:`_rotation`)."""
     e = _rotation_entries(q[b, 3], q[b, 4], q[b, 5])
@@ -462,7 +461,7 @@ def _rotated(q, b, f):  # pragma: no cover - numba
     return px, py, pz
 
 
-@numba.njit(cache=True, fastmath=_FASTMATH)
+@numba.njit(cache=True)
 def _fairlead_motion(q, v, fair, r_out, v_out):  # pragma: no cover - numba
     """Fairlead positions and velocities ``(B, 3, 3)`` from the platform state."""
     for b in range(q.shape[0]):
@@ -477,7 +476,7 @@ def _fairlead_motion(q, v, fair, r_out, v_out):  # pragma: no cover - numba
             v_out[b, i, 2] = v[b, 2] + wx * py - wy * px
 
 
-@numba.njit(cache=True, fastmath=_FASTMATH)
+@numba.njit(cache=True)
 def _moor_generalised(q, fmoor, fair, out):  # pragma: no cover - numba
     """6-DOF mooring load about the (displaced) origin from fairlead forces ``(B, 3, 3)``."""
     for b in range(q.shape[0]):
@@ -494,7 +493,7 @@ def _moor_generalised(q, fmoor, fair, out):  # pragma: no cover - numba
             out[b, 5] += px * fy - py * fx
 
 
-@numba.njit(cache=True, fastmath=_FASTMATH)
+@numba.njit(cache=True)
 def _rhs(b, t_frac, j, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
          minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc,
          spos, saxis, scdn, scda, hub, tv, tf, fa, fb, fc, fd,
@@ -591,7 +590,7 @@ def _rhs(b, t_frac, j, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
         dv[d] = acc
 
 
-@numba.njit(cache=True, fastmath=_FASTMATH)
+@numba.njit(cache=True)
 def _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
               minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc,
               spos, saxis, scdn, scda, hub, tv, tf, fa, fb, fc, fd, acc_out):  # pragma: no cover
@@ -641,7 +640,7 @@ def _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
             zf[b, r] = y0[12 + nr + r]
 
 
-@numba.njit(cache=True, fastmath=_FASTMATH)
+@numba.njit(cache=True)
 def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, motion, accel, tension, fmoor6, acc,
              hist, stride, ker, kpi, kpj,
              force, wind, wdir, kin, kin_every, minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc,
@@ -692,7 +691,7 @@ def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, 
             accel[b, 2, i] = acc[b, 2] + acc[b, 3] * hy - acc[b, 4] * hx
 
 
-@numba.njit(cache=True, fastmath=_FASTMATH)
+@numba.njit(cache=True)
 def _convolve(j, stride, v, hist, ker, kpi, kpj, out):  # pragma: no cover - numba
     """Subtract the radiation convolution ``sum_k K[k] v(t_j - k stride dt)`` from ``out (B, 6)``.
 
@@ -720,7 +719,7 @@ def _convolve(j, stride, v, hist, ker, kpi, kpj, out):  # pragma: no cover - num
             out[b, kpi[p]] -= acc
 
 
-@numba.njit(cache=True, fastmath=_FASTMATH)
+@numba.njit(cache=True)
 def _predict_fairleads(q, v, fair, dt, r_out, v_out):  # pragma: no cover - numba
     """Fairlead positions extrapolated to ``t + dt`` and velocities, ``(B, 3, 3)``."""
     _fairlead_motion(q, v, fair, r_out, v_out)

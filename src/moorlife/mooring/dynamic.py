@@ -69,9 +69,6 @@ __all__ = [
 ]
 
 GAMMA = 1.0 + 1.0 / math.sqrt(2.0)
-#: LLVM fast-math flags of the kernels: all but "no NaN / no Inf", so that a diverged or
-#: non-finite state is still detected.
-_FASTMATH = {"nsz", "arcp", "contract", "afn", "reassoc"}
 #: Height above the seabed (m) below which the implicit matrix includes the seabed contact,
 #: on top of the distance a descending node covers in one step.
 CONTACT_BAND = 0.01
@@ -128,7 +125,7 @@ def line_model(props: LineProperties, layout: Layout, settings: MooringSettings)
 
 
 # --------------------------------------------------------------------------- 3x3 helpers
-@njit(cache=True, inline="always", fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, inline="always", error_model="numpy")
 def _inv3(A, out):
     a, b, c = A[0, 0], A[0, 1], A[0, 2]
     d, e, f = A[1, 0], A[1, 1], A[1, 2]
@@ -150,7 +147,7 @@ def _inv3(A, out):
 
 
 # --------------------------------------------------------------------------- forces
-@njit(cache=True, fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _node_forces(r, v, p, hb, jac, ws):
     """Net node forces and, if ``jac``, the pieces of the implicit matrix.
 
@@ -271,7 +268,7 @@ def _node_forces(r, v, p, hb, jac, ws):
         F[i, 2] = fz
 
 
-@njit(cache=True, fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _end_force(r, v, p, out):
     """Net force of the fairlead node (N) without its inertia, i.e. the force on the platform."""
     N = int(p[_N])
@@ -299,7 +296,7 @@ def _end_force(r, v, p, out):
 
 
 # --------------------------------------------------------------------------- ROS2 step
-@njit(cache=True, inline="always", fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, inline="always", error_model="numpy")
 def _kx_times(sq, sa, sg, Kz, rx, i, out):
     """(K_x rx)_i for interior node i: segment springs to both neighbours + seabed spring."""
     ax = rx[i - 1, 0] - rx[i, 0]
@@ -315,7 +312,7 @@ def _kx_times(sq, sa, sg, Kz, rx, i, out):
     out[2] = qa * sq[i - 1, 2] + sg[i - 1] * az + qb * sq[i, 2] + sg[i] * bz - Kz[i] * rx[i, 2]
 
 
-@njit(cache=True, fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _solve_blocks(S, Winv, b, x, N, tmp):
     """Solve the factorised block-tridiagonal system (interior nodes 1..N-1)."""
     for a in range(3):
@@ -336,7 +333,7 @@ def _solve_blocks(S, Winv, b, x, N, tmp):
             x[i, a] = Winv[i, a, 0] * tmp[0] + Winv[i, a, 1] * tmp[1] + Winv[i, a, 2] * tmp[2]
 
 
-@njit(cache=True, fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _factor(ws, S, Winv, D, tmpm, N, cs, cg, cz):
     """Coupling blocks and block-Thomas inverses of ``M + cz C + (segments) + cg Kz``.
 
@@ -379,7 +376,7 @@ def _factor(ws, S, Winv, D, tmpm, N, cs, cg, cz):
         _inv3(D, Winv[i])
 
 
-@njit(cache=True, fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _ros2_step(r, v, rf0, vf0, rf1, vf1, h, p, w):
     """One ROS2 step of one line; r, v (N+1, 3) updated in place, fairlead moved rf0 -> rf1."""
     ws1, ws2, S, Winv, D, tmpm, rhs, kx1, kv1, kx2, kv2, r2, v2, tmp3 = w
@@ -459,7 +456,7 @@ def _ros2_step(r, v, rf0, vf0, rf1, vf1, h, p, w):
         v[N, a] = vf1[a]
 
 
-@njit(cache=True, fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _bdf2_step(r, v, rp, vp, rf1, vf1, h, p, w):
     """One linearly implicit BDF2 step of one line (constant step h; rp, vp the previous state).
 
@@ -508,7 +505,7 @@ def _bdf2_step(r, v, rp, vp, rf1, vf1, h, p, w):
         v[N, a] = vf1[a]
 
 
-@njit(cache=True, fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _static_solve(r, p, w, iters, tol):
     """Newton iterations on the static node equilibrium of one line (fairlead and anchor fixed).
 
@@ -547,7 +544,7 @@ def _static_solve(r, p, w, iters, tol):
     return res
 
 
-@njit(cache=True, inline="always", fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, inline="always", error_model="numpy")
 def _hermite(p0, v0, p1, v1, T, s, pos, vel):
     """Cubic Hermite position and velocity at fraction s of an interval of length T."""
     s2 = s * s
@@ -565,7 +562,7 @@ def _hermite(p0, v0, p1, v1, T, s, pos, vel):
         vel[a] = d00 * p0[a] + d10 * v0[a] + d01 * p1[a] + d11 * v1[a]
 
 
-@njit(cache=True, fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _step_batch(r, v, rp, vp, hist, r_new, v_new, dt, nsub, scheme, p, buf, forces, tension):
     """Advance every line of every batch member by dt (nsub substeps).
 
@@ -613,12 +610,12 @@ def _work_size(N: int) -> int:
     return 2 * stage + 9 * N + 9 * n1 + 9 + 9 + 7 * 3 * n1 + 3 + 6 * 3
 
 
-@njit(cache=True, fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _take(buf, o, n):
     return buf[o:o + n], o + n
 
 
-@njit(cache=True, fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _stage_views(buf, o, N):
     n1 = N + 1
     F, o = _take(buf, o, 3 * n1)
@@ -636,7 +633,7 @@ def _stage_views(buf, o, N):
     return ws, o
 
 
-@njit(cache=True, fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _views(buf, N):
     """Work arrays of one line step as views into one flat buffer (see :func:`_work_size`).
 
@@ -671,7 +668,7 @@ def _workspace(N: int) -> np.ndarray:
     return np.zeros(_work_size(N))
 
 
-@njit(cache=True, fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _node_forces_flat(r, v, p, buf):
     w, _ = _views(buf, int(p[_N]))
     ws = w[0]
@@ -679,7 +676,7 @@ def _node_forces_flat(r, v, p, buf):
     return ws[0].copy(), ws[5].copy(), ws[6].copy(), ws[7].copy()
 
 
-@njit(cache=True, fastmath=_FASTMATH, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _static_solve_flat(r, p, buf, iters, tol):
     w, _ = _views(buf, int(p[_N]))
     return _static_solve(r, p, w, iters, tol)
