@@ -1,0 +1,351 @@
+"""The xarray/pandas adapters of the life-cycle stage, used by the workflow scripts.
+
+:func:`reconstruct_lifecycle` rebuilds every output for every hindcast hour (``lifecycle.zarr``),
+:func:`discrete_damage_table` gives the damage of the discrete matrix and :func:`summary_table`
+compares both.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import pandas as pd
+import xarray as xr
+
+from moorlife import fatigue, names, rbf
+from moorlife.lifecycle.damage import (
+    DAMAGE_VARS,
+    HOURS_PER_YEAR,
+    damage_per_year,
+    design_check,
+    difference_pct,
+    discrete_damage,
+    life_damage,
+)
+from moorlife.lifecycle.fit import fit_outputs, validation_metrics
+from moorlife.lifecycle.outputs import (
+    _label,
+    output_columns,
+    stack_outputs,
+    unstack_outputs,
+)
+from moorlife.lifecycle.sensitivity import corrosion_evolution
+from moorlife.lifecycle.settings import RBFSettings
+from moorlife.lifecycle.uncertainty import error_indicator, life_band, suggest_states
+
+__all__ = ["reconstruct_lifecycle", "discrete_damage_table", "summary_table"]
+
+log = logging.getLogger("moorlife.lifecycle")
+
+
+def _points(ds: xr.Dataset, dim: str) -> np.ndarray:
+    missing = [v for v in names.METOCEAN_VARS if v not in ds]
+    if missing:
+        raise ValueError(f"dataset along {dim!r} lacks the sea-state variable(s) {missing}")
+    return np.column_stack([ds[v].transpose(dim).to_numpy().astype(float) for v in names.METOCEAN_VARS])
+
+
+def _selection_scaling(cases: xr.Dataset) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """The selection's normalisation (``norm_lo``/``norm_span`` attributes) in METOCEAN_VARS order."""
+    lo, span = cases.attrs.get("norm_lo"), cases.attrs.get("norm_span")
+    if lo is None or span is None:
+        log.info("cases store has no norm_lo/norm_span: normalising by the training states' range")
+        return None, None
+    order = list(cases.attrs.get("norm_variables", names.METOCEAN_VARS))
+    missing = [v for v in names.METOCEAN_VARS if v not in order]
+    if missing or len(order) != len(lo) or len(order) != len(span):
+        raise ValueError(f"cases.zarr: attributes norm_variables {order}, norm_lo, norm_span are inconsistent "
+                         f"(need {list(names.METOCEAN_VARS)})")
+    idx = [order.index(v) for v in names.METOCEAN_VARS]
+    return np.asarray(lo, dtype=float)[idx], np.asarray(span, dtype=float)[idx]
+
+
+def _a(long_name: str, units: str = "1") -> dict[str, str]:
+    return {"units": units, "long_name": long_name}
+
+
+def _fit_vars(out: xr.Dataset, model: rbf.RBFModel, x_train: np.ndarray, ids: np.ndarray) -> xr.Dataset:
+    """Shape parameters, transforms and leave-one-out residuals of the fit."""
+    out = out.assign_coords(train=("train", ids))
+    out["shape_parameter"] = ("output", model.shape, _a("RBF shape parameter q0 (normalised distance)"))
+    out["smoothing"] = ("output", model.smoothing, _a("RBF ridge term on the kernel diagonal (0: exact)"))
+    out["loo_rmse"] = ("output", np.sqrt(np.mean(model.loo_error**2, axis=0)),
+                       _a("Rippa leave-one-out RMSE (transformed space)"))
+    out["log_transform"] = ("output", model.log_output.astype(np.int8), _a("1 if interpolated as log10"))
+    out["train_points"] = (("train", "metocean_var"), x_train, _a("training sea states (physical units)"))
+    out["loo_error"] = (("train", "output"), model.loo_error, _a("leave-one-out residual per training state"))
+    return out
+
+
+def _validation_vars(out: xr.Dataset, model: rbf.RBFModel, x_val: np.ndarray, y_val: np.ndarray,
+                     ids: np.ndarray) -> xr.Dataset:
+    """Rebuilt vs simulated values on the validation states and their metrics."""
+    pv = rbf.predict_rbf(model, x_val)
+    for k, v in validation_metrics(pv, y_val).items():
+        out[f"validation_{k}"] = ("output", v, _a(f"validation {k} on {len(ids)} states"))
+    out = out.assign_coords(validate=("validate", ids))
+    out["validate_points"] = (("validate", "metocean_var"), x_val, _a("validation sea states"))
+    out["validation_predicted"] = (("validate", "output"), pv, _a("rebuilt value at validation states"))
+    out["validation_simulated"] = (("validate", "output"), y_val, _a("simulated value at validation states"))
+    return out
+
+
+def _damage_vars(out: xr.Dataset, n_hours: int, fs: fatigue.FatigueSettings) -> xr.Dataset:
+    """Life-cycle damage, yearly and design-life damage, fatigue life and design check per line and curve."""
+    curves = [c for c in names.CURVES if DAMAGE_VARS[c] in out]
+    if not curves:
+        return out
+    hourly = [np.clip(out[DAMAGE_VARS[c]].transpose(names.TIME, names.LINE).values, 0, None) for c in curves]
+    total = np.stack([life_damage(h) for h in hourly])  # (curve, line)
+    py = damage_per_year(total, n_hours)
+    checks = [design_check(py[i], fs.design_life, c, fs) for i, c in enumerate(curves)]
+    cd = (names.CURVE, names.LINE)
+    out = out.assign_coords({names.CURVE: curves})
+    out["lifecycle_damage"] = (cd, total, _a(f"damage summed over the {n_hours} hindcast hours"))
+    out["damage_per_year"] = (cd, py, _a("life-cycle damage per year", "year-1"))
+    for key, dims, text, units in (
+        ("design_life_damage", cd, f"damage over the {fs.design_life:g} year design life", "1"),
+        ("fatigue_life_years", cd, "characteristic fatigue life (D = 1)", "year"),
+        ("design_fatigue_factor", (names.CURVE,), "design fatigue factor (DNVGL-OS-E301 or API)", "1"),
+        ("damage_ratio", (names.CURVE,), "dF: adjacent-line over most-damaged-line damage", "1"),
+        ("utilisation", cd, "DFF x design-life damage (passes if <= 1)", "1"),
+    ):
+        out[key] = (dims, np.stack([c[key] for c in checks]), _a(text, units))
+    passes = np.stack([c["passes"] for c in checks]).astype(np.int8)
+    out["passes"] = (cd, passes, _a("1 if DFF x design-life damage <= 1"))
+    out.attrs["design_life_years"] = float(fs.design_life)
+    return out
+
+
+def _uncertainty_vars(out: xr.Dataset, model: rbf.RBFModel, hp: np.ndarray, scale: np.ndarray,
+                      n_suggest: int) -> xr.Dataset:
+    """Error indicator per hour and the adaptive-selection suggestions."""
+    ind, dist = error_indicator(model, hp, scale)
+    out["nearest_distance"] = (names.TIME, dist, _a("normalised distance to the nearest training state"))
+    out["error_indicator"] = (names.TIME, ind, _a("LOO error of the nearest training state x relative distance"))
+    picks = suggest_states(model, hp, ind, n_suggest, distance=dist)
+    out = out.assign_coords(suggestion=("suggestion", np.arange(picks.size)))
+    out["suggested_hour"] = ("suggestion", picks, _a("hindcast index to simulate next (adaptive selection)"))
+    return out
+
+
+def reconstruct_lifecycle(
+    hindcast: xr.Dataset,
+    cases: xr.Dataset,
+    sims: xr.Dataset,
+    *,
+    settings: RBFSettings,
+    fatigue_cfg: Mapping[str, Any] | None = None,
+    n_suggest: int = 50,
+    compare_transforms: bool = True,
+) -> xr.Dataset:
+    """Rebuild every output for every hindcast hour, with validation and life damage.
+
+    Parameters
+    ----------
+    hindcast : xarray.Dataset
+        ``results/metocean/hindcast.zarr`` (dim ``time``).
+    cases : xarray.Dataset
+        ``results/selection/cases.zarr`` (dim ``case``, ``role``, optional ``norm_lo``/``norm_span``
+        attributes).
+    sims : xarray.Dataset
+        ``results/{ms}/simulations.zarr`` (dims ``case``, ``line``).
+    settings : RBFSettings
+    fatigue_cfg : mapping, optional
+        The ``fatigue:`` section (design life, design-factor rules).
+    n_suggest : int
+        Number of adaptive-selection suggestions.
+    compare_transforms : bool
+        Also validate the other damage transform (linear vs log10) and store its metrics.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``time``, ``line``, ``curve``, ``output``, ``train``, ``suggestion``: every
+        rebuilt output on ``time`` (and ``line``); per output the shape parameter, LOO RMSE and
+        validation metrics; per line and curve the life-cycle damage, yearly and design-life
+        damage, fatigue life, DFF and verdict; the adaptive-selection suggestions.
+    """
+    dim = names.CASE
+    common = np.intersect1d(cases[dim].values, sims[dim].values)
+    cases = cases.sel({dim: common})
+    sims = sims.sel({dim: common})
+    role = np.array([str(v) for v in cases["role"].values])
+    train, valid = role == "train", role == "validate"
+    if train.sum() < 8:
+        raise ValueError(f"only {int(train.sum())} training cases are simulated; the RBF needs at least 8")
+    cols = output_columns(sims, dim, settings.outputs)
+    y = stack_outputs(sims, dim, cols)
+    bad = ~np.isfinite(y)
+    if bad.any():
+        i, j = np.argwhere(bad)[0]
+        raise ValueError(f"simulations: {_label(cols[j])} is not finite for case {int(common[i])} ({y[i, j]!r})")
+    x = _points(cases, dim)
+    lo, span = _selection_scaling(cases)
+    model = fit_outputs(x[train], y[train], cols, settings, lo=lo, span=span)
+    labels = [_label(c) for c in cols]
+    log.info("RBF fitted on %d training states, %d outputs; shapes %s", int(train.sum()), len(cols),
+             {lab: round(float(q), 4) for lab, q in zip(labels, model.shape)})
+
+    hp = _points(hindcast, names.TIME)
+    pred = rbf.predict_rbf(model, hp, chunk_rows=settings.chunk_rows)
+    out = unstack_outputs(pred, cols, names.TIME, {names.TIME: hindcast[names.TIME].values})
+    for v in names.METOCEAN_VARS:
+        out[v] = hindcast[v].astype(float)
+    is_dmg = np.array([c[0].startswith("damage") for c in cols])
+    if is_dmg.any():
+        neg = pred[:, is_dmg] < 0
+        if neg.any():
+            log.warning("%d rebuilt hourly damages are negative (RBF undershoot); clipped to 0 in the sums",
+                        int(neg.sum()))
+
+    out = out.assign_coords(output=labels, metocean_var=list(names.METOCEAN_VARS))
+    out = _fit_vars(out, model, x[train], common[train])
+    if valid.any():
+        out = _validation_vars(out, model, x[valid], y[valid], common[valid])
+        if compare_transforms and is_dmg.any():
+            alt = fit_outputs(x[train], y[train][:, is_dmg], [c for c, d in zip(cols, is_dmg) if d], settings,
+                              lo=lo, span=span, log_damage=not settings.log_damage)
+            am = validation_metrics(rbf.predict_rbf(alt, x[valid]), y[valid][:, is_dmg])
+            other = "linear" if settings.log_damage else "log10"
+            for k in ("r", "rmse", "sum_error"):
+                arr = np.full(len(cols), np.nan)
+                arr[is_dmg] = am[k]
+                text = f"validation {k}, damage {other}-interpolated"
+                out[f"validation_{k}_other_transform"] = ("output", arr, _a(text))
+    n_hours = hindcast.sizes[names.TIME]
+    out = _damage_vars(out, n_hours, fatigue.fatigue_settings(fatigue_cfg))
+    scale = np.where(model.log_output, 1.0, np.std(y[train], axis=0))
+    out = _uncertainty_vars(out, model, hp, scale, n_suggest)
+    out.attrs.update({
+        "n_hours": int(n_hours),
+        "n_years": float(n_hours / HOURS_PER_YEAR),
+        "n_train": int(train.sum()),
+        "n_validate": int(valid.sum()),
+        "rbf_shape_mode": settings.shape_mode,
+        "rbf_log_damage": int(settings.log_damage),
+        "mooring_system": str(sims.attrs.get("mooring_system", "")),
+    })
+    return out
+
+
+def discrete_damage_table(discrete_states: xr.Dataset, discrete_sims: xr.Dataset, n_hours: float) -> xr.Dataset:
+    """Conventional damage per line and curve from the scatter-matrix bins.
+
+    Parameters
+    ----------
+    discrete_states : xarray.Dataset
+        ``results/selection/discrete.zarr`` (dim ``bin``, ``probability``).
+    discrete_sims : xarray.Dataset
+        ``results/{ms}/discrete.zarr`` (dims ``bin``, ``line``; ``damage_sn``, ``damage_tn``).
+    n_hours : float
+        Hours of the hindcast.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``discrete_damage`` on (``curve``, ``line``).
+    """
+    b = names.BIN
+    common = np.intersect1d(discrete_states[b].values, discrete_sims[b].values)
+    if common.size < discrete_states.sizes[b]:
+        raise ValueError(f"discrete.zarr: {discrete_states.sizes[b] - common.size} bin(s) were not simulated")
+    p = discrete_states["probability"].sel({b: common}).values
+    curves = [c for c in names.CURVES if DAMAGE_VARS[c] in discrete_sims]
+    vals = np.stack([
+        discrete_damage(p, discrete_sims[DAMAGE_VARS[c]].sel({b: common}).transpose(b, names.LINE).values, n_hours)
+        for c in curves
+    ])
+    return xr.Dataset(
+        {"discrete_damage": ((names.CURVE, names.LINE), vals, {"units": "1", "long_name": "sum_b p_b d_b hours"})},
+        coords={names.CURVE: curves, names.LINE: discrete_sims[names.LINE].values},
+    )
+
+
+def summary_table(
+    lifecycles: Mapping[str, xr.Dataset],
+    discretes: Mapping[str, xr.Dataset],
+    mooring: pd.DataFrame,
+    *,
+    seed_cv: Mapping[str, float] | None = None,
+    coverage: float = 1.0,
+    corrosion: fatigue.FatigueSettings | None = None,
+) -> pd.DataFrame:
+    """One row per (mooring system, line, curve): the comparison table of the study.
+
+    Parameters
+    ----------
+    lifecycles : mapping of id -> Dataset
+        ``results/{ms}/lifecycle.zarr``.
+    discretes : mapping of id -> Dataset
+        :func:`discrete_damage_table` of each system.
+    mooring : pandas.DataFrame
+        ``config/mooring_systems.tsv`` indexed by ``mooring_system``.
+    seed_cv : mapping of curve -> float, optional
+        Relative scatter of the hourly damage across random seeds (seed sensitivity), used with
+        the validation sum error for the fatigue-life band.
+    coverage : float
+        Coverage factor of the band (:func:`life_band`).
+    corrosion : moorlife.fatigue.FatigueSettings, optional
+        If given, the verdict uses the design-life damage of the corroding chain
+        (:func:`corrosion_evolution` with its corrosion rate and step) instead of the intact one;
+        the columns ``design_life_damage_corroded`` and ``utilisation_corroded`` are added.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``mooring_system, line, curve, mass_kg_per_m, link_diameter_mm, lifecycle_damage,
+        damage_per_year, design_life_damage, discrete_damage, difference_pct, fatigue_life_years,
+        fatigue_life_low, fatigue_life_high, design_fatigue_factor, utilisation, passes,
+        surge_mpm_max, tension_mpm_max`` (+ the corroded columns).
+    """
+    rows = []
+    for ms, lc in lifecycles.items():
+        dd = discretes.get(ms)
+        row0 = mooring.loc[ms]
+        for curve in [str(c) for c in lc[names.CURVE].values]:
+            o_idx = [lab for lab in lc["output"].values if str(lab).startswith(DAMAGE_VARS[curve])]
+            rel_err = float(np.nanmax(np.abs(lc["validation_sum_error"].sel(output=o_idx).values))) if (
+                "validation_sum_error" in lc and o_idx) else 0.0
+            cv = float((seed_cv or {}).get(curve, 0.0))
+            for line in [str(v) for v in lc[names.LINE].values]:
+                sel = {names.CURVE: curve, names.LINE: line}
+                life = float(lc["fatigue_life_years"].sel(sel))
+                low, high = life_band(life, np.hypot(cv, rel_err), coverage)
+                total = float(lc["lifecycle_damage"].sel(sel))
+                disc = float(dd["discrete_damage"].sel(sel)) if dd is not None else np.nan
+                row = {
+                    "mooring_system": ms,
+                    "line": line,
+                    "curve": curve,
+                    "mass_kg_per_m": float(row0["mass_kg_per_m"]),
+                    "link_diameter_mm": float(row0["link_diameter_mm"]),
+                    "lifecycle_damage": total,
+                    "damage_per_year": float(lc["damage_per_year"].sel(sel)),
+                    "design_life_damage": float(lc["design_life_damage"].sel(sel)),
+                    "discrete_damage": disc,
+                    "difference_pct": float(difference_pct(total, disc)),
+                    "fatigue_life_years": life,
+                    "fatigue_life_low": float(low),
+                    "fatigue_life_high": float(high),
+                    "design_fatigue_factor": float(lc["design_fatigue_factor"].sel({names.CURVE: curve})),
+                    "utilisation": float(lc["utilisation"].sel(sel)),
+                    "passes": bool(lc["passes"].sel(sel)),
+                    "surge_mpm_max": float(lc["surge_mpm"].max()) if "surge_mpm" in lc else np.nan,
+                    "tension_mpm_max": (float(lc["tension_mpm"].sel({names.LINE: line}).max())
+                                        if "tension_mpm" in lc else np.nan),
+                }
+                if corrosion is not None:
+                    life_years = float(lc.attrs.get("design_life_years", corrosion.design_life))
+                    mean_t = (float(lc["tension_mean"].sel({names.LINE: line}).mean()) if "tension_mean" in lc
+                              else float(row0["pretension_kN"]) * 1e3)
+                    ev = corrosion_evolution(row["damage_per_year"], float(row0["link_diameter_mm"]) * 1e-3, life_years,
+                                             curve=curve, settings=corrosion, mean_tension=mean_t)
+                    row["design_life_damage_corroded"] = float(ev["corroded"][-1])
+                    row["utilisation_corroded"] = row["design_fatigue_factor"] * row["design_life_damage_corroded"]
+                    row["passes"] = bool(row["utilisation_corroded"] <= 1.0)
+                rows.append(row)
+    return pd.DataFrame(rows)

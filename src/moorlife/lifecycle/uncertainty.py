@@ -1,0 +1,109 @@
+"""Where the reconstruction is least certain, the states to simulate next, and the life band."""
+
+from __future__ import annotations
+
+import numpy as np
+import numpy.typing as npt
+
+from moorlife import rbf
+
+__all__ = ["error_indicator", "suggest_states", "life_band"]
+
+
+def error_indicator(model: rbf.RBFModel, points: npt.ArrayLike, scale: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """Where the RBF is least certain: nearest training state's LOO error x distance.
+
+    ``indicator = max_k |e_k(nearest)| / scale_k x (d_nearest / d_typical)``, with ``e``
+    Rippa's leave-one-out residuals (:attr:`RBFModel.loo_error`), ``scale`` a per-output
+    normaliser (e.g. the standard deviation of the training values) and ``d_typical`` the
+    median nearest-neighbour spacing of the training states. High where the surface varies
+    fast (large LOO error) and training states are sparse.
+
+    Parameters
+    ----------
+    model : moorlife.rbf.RBFModel
+    points : array_like, shape (n, 5)
+    scale : array_like, shape (k,)
+
+    Returns
+    -------
+    indicator : numpy.ndarray, shape (n,)
+    distance : numpy.ndarray, shape (n,)
+        Normalised distance to the nearest training state.
+    """
+    dist, idx = rbf.nearest_centre(model, points)
+    typical = _typical_spacing(model)
+    s = np.asarray(scale, dtype=float)
+    s = np.where(s > 0, s, 1.0)
+    loo = np.max(np.abs(model.loo_error) / s, axis=1)  # (m,)
+    return loo[idx] * dist / typical, dist
+
+
+def _typical_spacing(model: rbf.RBFModel) -> float:
+    z = model.centres
+    d2 = rbf.squared_distances(z, z, model.space.is_direction)
+    np.fill_diagonal(d2, np.inf)
+    t = float(np.median(np.sqrt(d2.min(axis=1))))
+    return t if t > 0 else 1.0
+
+
+def suggest_states(
+    model: rbf.RBFModel, points: npt.ArrayLike, indicator: npt.ArrayLike, n: int,
+    distance: npt.ArrayLike | None = None,
+) -> np.ndarray:
+    """Adaptive selection: the ``n`` hours to simulate next, greedily, most uncertain first.
+
+    Each pick maximises ``indicator x min(1, d_set / d_nearest)`` where ``d_set`` is the
+    distance to the training states and the picks so far, so that one uncertain region does
+    not take every pick (the running-minimum update of maximum dissimilarity).
+
+    Parameters
+    ----------
+    model : moorlife.rbf.RBFModel
+    points : array_like, shape (n_hours, 5)
+    indicator : array_like, shape (n_hours,)
+        From :func:`error_indicator`.
+    n : int
+    distance : array_like, shape (n_hours,), optional
+        Distance to the nearest training state (from :func:`error_indicator`); computed if omitted.
+
+    Returns
+    -------
+    numpy.ndarray of int64, shape (n,)
+        Row indices into ``points``, in pick order (ties: lowest index).
+    """
+    z = rbf.normalise(points, model.space)
+    ind = np.asarray(indicator, dtype=float)
+    d0 = rbf.nearest_centre(model, points)[0] if distance is None else np.asarray(distance, dtype=float)
+    dset = d0.copy()
+    picks: list[int] = []
+    with np.errstate(invalid="ignore", divide="ignore"):
+        for _ in range(min(int(n), z.shape[0])):
+            score = ind * np.where(d0 > 0, np.minimum(1.0, dset / d0), 0.0)
+            k = int(np.argmax(score))
+            if score[k] <= 0:
+                break
+            picks.append(k)
+            dk = np.sqrt(rbf.squared_distances(z, z[k : k + 1], model.space.is_direction)[:, 0])
+            dset = np.minimum(dset, dk)
+    return np.asarray(picks, dtype=np.int64)
+
+
+def life_band(life_years: npt.ArrayLike, rel_sigma: npt.ArrayLike, k: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """Band on fatigue life from a relative damage uncertainty.
+
+    ``life / (1 + k sigma)`` to ``life / max(1 - k sigma, 0)`` (infinite when ``k sigma >= 1``).
+
+    Parameters
+    ----------
+    life_years : array_like
+    rel_sigma : array_like
+        Relative standard uncertainty of the damage, e.g. ``sqrt(cv_seed^2 + err_rbf^2)``.
+    k : float
+        Coverage factor (1: one standard deviation).
+    """
+    life = np.asarray(life_years, dtype=float)
+    s = k * np.asarray(rel_sigma, dtype=float)
+    with np.errstate(divide="ignore"):
+        hi = np.where(s < 1, life / np.where(s < 1, 1 - s, 1.0), np.inf)
+    return life / (1 + s), hi

@@ -1,0 +1,176 @@
+"""The fit: a multi-output Gaussian RBF with a first-degree polynomial (:func:`fit_rbf`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from moorlife.rbf.kernels import polynomial_basis
+from moorlife.rbf.loocv import choose_shapes_and_smoothing, rippa_errors, shape_grid
+from moorlife.rbf.system import (
+    _inverse,
+    augmented_matrix,
+    kernel_block_inverse,
+    solve_weights,
+)
+from moorlife.space import Space, as_points, embed, fit_space, squared_distances
+
+__all__ = ["RBFModel", "fit_rbf"]
+
+
+@dataclass(frozen=True)
+class RBFModel:
+    """A fitted multi-output Gaussian RBF interpolant (immutable arrays).
+
+    Attributes
+    ----------
+    space : Space
+        The input normalisation.
+    centres : numpy.ndarray, shape (m, d)
+        Normalised training points.
+    shape : numpy.ndarray, shape (n_out,)
+        Shape parameter ``q0`` per output (normalised distance units).
+    weights : numpy.ndarray, shape (m, n_out)
+        Kernel weights.
+    poly_coef : numpy.ndarray, shape (p, n_out)
+        Polynomial coefficients on :func:`polynomial_basis`.
+    log_output : numpy.ndarray of bool, shape (n_out,)
+        Outputs interpolated as ``log10`` (back-transformed on prediction).
+    loo_error : numpy.ndarray, shape (m, n_out)
+        Leave-one-out residuals at the chosen shape, in the transformed space
+        (``log10`` units for log outputs).
+    smoothing : numpy.ndarray, shape (n_out,)
+        Ridge term added to the kernel diagonal per output (0: exact interpolation).
+    """
+
+    space: Space
+    centres: np.ndarray
+    shape: np.ndarray
+    weights: np.ndarray
+    poly_coef: np.ndarray
+    log_output: np.ndarray
+    loo_error: np.ndarray
+    smoothing: np.ndarray
+
+    @property
+    def n_outputs(self) -> int:
+        return int(self.weights.shape[1])
+
+
+def fit_rbf(
+    points: npt.ArrayLike,
+    values: npt.ArrayLike,
+    *,
+    is_direction: npt.ArrayLike,
+    shape: float | npt.ArrayLike | None = None,
+    shapes: npt.ArrayLike | None = None,
+    log_output: bool | npt.ArrayLike = False,
+    smoothing: float | npt.ArrayLike = 0.0,
+    share_tol: float = 0.0,
+    lo: npt.ArrayLike | None = None,
+    span: npt.ArrayLike | None = None,
+) -> RBFModel:
+    """Fit a multi-output Gaussian RBF with a first-degree polynomial.
+
+    Parameters
+    ----------
+    points : array_like, shape (m, d)
+        Training sea states in physical units (directions in degrees).
+    values : array_like, shape (m, n_out) or (m,)
+        Simulated outputs.
+    is_direction : array_like of bool, shape (d,)
+    shape : float or array_like (n_out,), optional
+        Fixed ``q0`` per output. If omitted, Rippa's criterion picks it from ``shapes``.
+    shapes : array_like, optional
+        Candidate grid for Rippa; default ``shape_grid(0.02, 1.0, 20)``.
+    log_output : bool or array_like of bool (n_out,)
+        Interpolate ``log10`` of these outputs (they must be positive).
+    smoothing : float or array_like
+        Ridge term (0: exact interpolation, the paper's choice). Several values are candidates:
+        each output then takes the one with the smallest leave-one-out error, jointly with its
+        shape (:func:`choose_shapes_and_smoothing`).
+    share_tol : float
+        See :func:`choose_shapes`.
+    lo, span : array_like (d,), optional
+        Normalisation offset and range of the scalars (e.g. the hindcast's, see
+        :func:`fit_space`); default from the points.
+
+    Returns
+    -------
+    RBFModel
+
+    Raises
+    ------
+    ValueError
+        On non-finite values, non-positive values of a log output (naming output and row),
+        or mismatched shapes.
+    """
+    x = as_points(points)
+    y = np.asarray(values, dtype=float)
+    if y.ndim == 1:
+        y = y[:, None]
+    if y.shape[0] != x.shape[0]:
+        raise ValueError(f"values have {y.shape[0]} rows, points have {x.shape[0]}")
+    if not np.all(np.isfinite(y)):
+        row, col = np.argwhere(~np.isfinite(y))[0]
+        raise ValueError(f"values are not finite: output {col}, row {row} = {y[row, col]!r}")
+    n_out = y.shape[1]
+    logs = np.broadcast_to(np.asarray(log_output, dtype=bool), (n_out,)).copy()
+    if logs.any():
+        sub = y[:, logs]
+        if np.any(sub <= 0):
+            row, col = np.argwhere(sub <= 0)[0]
+            out = int(np.flatnonzero(logs)[col])
+            raise ValueError(
+                f"output {out} is log-transformed but row {row} = {sub[row, col]!r} is not positive"
+            )
+        y = y.copy()
+        y[:, logs] = np.log10(sub)
+    space = fit_space(x, is_direction, lo=lo, span=span)
+    z = embed(x, space)
+    d2 = squared_distances(z, z, space.is_direction)
+    basis = polynomial_basis(z, space.is_direction)
+    if z.shape[0] < basis.shape[1] + 1:
+        raise ValueError(f"{z.shape[0]} training points are too few for {basis.shape[1]} polynomial terms")
+    lam_grid = np.atleast_1d(np.asarray(smoothing, dtype=float))
+    if lam_grid.size == 0 or np.any(~(lam_grid >= 0)):
+        raise ValueError(f"smoothing must be non-negative, got {smoothing!r}")
+    if shape is None:
+        grid = shape_grid(0.02, 1.0, 20) if shapes is None else np.asarray(shapes, dtype=float)
+        q, lam = choose_shapes_and_smoothing(d2, basis, y, grid, lam_grid, share_tol)
+    else:
+        q = np.broadcast_to(np.asarray(shape, dtype=float), (n_out,)).copy()
+        if np.any(~(q > 0)):
+            raise ValueError(f"shape parameters must be positive, got {q}")
+        lam = np.full(n_out, lam_grid[0])
+        if lam_grid.size > 1:  # fixed shapes, smoothing by leave-one-out per shape
+            for qi in np.unique(q):
+                cols = np.flatnonzero(q == qi)
+                lam[cols] = choose_shapes_and_smoothing(d2, basis, y[:, cols], [qi], lam_grid, share_tol)[1]
+    m = z.shape[0]
+    weights = np.empty_like(y)
+    poly = np.empty((basis.shape[1], n_out))
+    loo = np.empty_like(y)
+    for qi, li in sorted(set(zip(q.tolist(), lam.tolist()))):
+        cols = np.flatnonzero((q == qi) & (lam == li))
+        mat = augmented_matrix(d2, basis, float(qi), float(li))
+        w, c = solve_weights(mat, y[:, cols])
+        weights[:, cols] = w
+        poly[:, cols] = c
+        h, _ = kernel_block_inverse(mat[:m, :m], basis)
+        if h is None:  # not numerically positive definite: fall back on the full inverse
+            h, _ = _inverse(mat)
+        loo[:, cols] = rippa_errors(h, y[:, cols])
+    return RBFModel(
+        space=space,
+        centres=z,
+        shape=q,
+        weights=weights,
+        poly_coef=poly,
+        log_output=logs,
+        loo_error=loo,
+        smoothing=lam,
+    )
+
