@@ -17,8 +17,9 @@ Conventions
 
 Rainflow counting follows ASTM E1049-85 section 5.4.4 (three-point rule) on the exact
 turning points, with no binning; the residue counts as half cycles (``residue="half"``)
-or is closed as if the record repeated (``residue="close"``: the residue is joined with
-itself and its closed cycles are counted, as Marsh et al. 2016 / fatpack).
+or is closed as if the record repeated (``residue="close"``: the cycles of one period of
+the repeated record, ASTM E1049-85 5.4.5; the residue is joined with itself as in Marsh et
+al. 2016 / fatpack).
 
 The package holds one concept per module; everything is re-exported here, so that
 ``from moorlife.fatigue import rainflow`` and ``fatigue.hourly_damage`` work as before:
@@ -42,7 +43,7 @@ from moorlife.fatigue.chain import (
     stress_area,
 )
 from moorlife.fatigue.counting import RESIDUE_METHODS as RESIDUE_METHODS
-from moorlife.fatigue.counting import rainflow, turning_points
+from moorlife.fatigue.counting import rainflow, rainflow_reference, turning_points
 from moorlife.fatigue.curves import CHAINS as CHAINS
 from moorlife.fatigue.curves import (
     DEFAULT_CURVES,
@@ -80,6 +81,7 @@ __all__ = [
     "get_curves",
     "turning_points",
     "rainflow",
+    "rainflow_reference",
     "stress_area",
     "r4s_break_load",
     "corroded_properties",

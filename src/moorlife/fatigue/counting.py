@@ -2,8 +2,11 @@
 
 Rainflow counting follows ASTM E1049-85 section 5.4.4 (three-point rule) on the exact
 turning points, with no binning; the residue counts as half cycles (``residue="half"``)
-or is closed as if the record repeated (``residue="close"``: the residue is joined with
-itself and its closed cycles are counted, as Marsh et al. 2016 / fatpack).
+or is closed as if the record repeated (``residue="close"``: the cycles the residue still
+closes are counted once, then the residue is joined with itself and the cycles that span
+the join are counted, as Marsh et al. 2016 / fatpack). :func:`rainflow_reference` is a
+plain-Python reading of the standard (5.4.4, and 5.4.5 for repeating histories) that the
+compiled kernels are tested against.
 """
 
 from __future__ import annotations
@@ -86,6 +89,11 @@ def _count_turning(rev, close):  # pragma: no cover - compiled
         return rng[:nc], mean[:nc], cnt[:nc]
     if hi < 2:
         return rng[:nc], mean[:nc], cnt[:nc]
+    # The residue can still hold closed cycles: on exactly equal ranges (X = Y) the rule
+    # above discards the starting point, which stays in the residue with a range that
+    # closes later (3, 1, 3, 0: the range 1-3). Count them here, once; joined with itself
+    # such a residue would give each of them twice (issue 20 item 12).
+    hi, nc = _four_point(buf, hi, rng, mean, cnt, nc)
     # close the residue: join it with itself (keeping the peak-valley condition at the
     # join) and extract the closed cycles with the four-point rule
     res = buf[:hi]
@@ -118,16 +126,24 @@ def _count_turning(rev, close):  # pragma: no cover - compiled
     for j in range(1 if drop_start else 0, hi):
         joined[nj] = res[j]
         nj += 1
-    st = np.empty(nj)
+    _, nc = _four_point(joined, nj, rng, mean, cnt, nc)
+    return rng[:nc], mean[:nc], cnt[:nc]
+
+
+@njit(cache=True)
+def _four_point(seq, n, rng, mean, cnt, nc):  # pragma: no cover - compiled
+    """Four-point rule over ``seq[:n]``, in place: each closed cycle is appended to
+    ``rng, mean, cnt`` from index ``nc``; returns ``(n_left, nc)``, ``seq[:n_left]`` the
+    points left (a sequence in which no range is closed)."""
     ns = 0
-    for j in range(nj):
-        st[ns] = joined[j]
+    for j in range(n):
+        seq[ns] = seq[j]
         ns += 1
         while ns >= 4:
-            s0 = st[ns - 4]
-            s1 = st[ns - 3]
-            s2 = st[ns - 2]
-            s3 = st[ns - 1]
+            s0 = seq[ns - 4]
+            s1 = seq[ns - 3]
+            s2 = seq[ns - 2]
+            s3 = seq[ns - 1]
             d1 = abs(s1 - s0)
             d2 = abs(s2 - s1)
             d3 = abs(s3 - s2)
@@ -136,11 +152,11 @@ def _count_turning(rev, close):  # pragma: no cover - compiled
                 mean[nc] = 0.5 * (s1 + s2)
                 cnt[nc] = 1.0
                 nc += 1
-                st[ns - 3] = s3
+                seq[ns - 3] = s3
                 ns -= 2
             else:
                 break
-    return rng[:nc], mean[:nc], cnt[:nc]
+    return ns, nc
 
 
 @njit(cache=True)
@@ -247,6 +263,10 @@ def rainflow(series: npt.ArrayLike, *, residue: str = "half") -> tuple[np.ndarra
     gives one half cycle of range 0. (The ``rainflow`` package returns no cycle for a
     two-sample record; for three samples or more both agree.)
 
+    With ``"close"`` a record of ``k`` periods of a periodic signal has ``k`` times the
+    cycles of one period, ties included (a sampled cosine: one cycle per period); the
+    cycles are those of ASTM E1049-85 5.4.5 (:func:`rainflow_reference`).
+
     Examples
     --------
     The ASTM E1049-85 example (its Fig. 6):
@@ -263,3 +283,96 @@ def rainflow(series: npt.ArrayLike, *, residue: str = "half") -> tuple[np.ndarra
         return empty, empty.copy(), empty.copy()
     rev = x[_turning_indices(x)]
     return _count_turning(rev, residue == "close")
+
+
+# ---------------------------------------------------------------------------------------
+# plain-Python reference (the compiled kernels above are tested against it)
+# ---------------------------------------------------------------------------------------
+def rainflow_reference(series: npt.ArrayLike, *, residue: str = "half") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Rainflow cycles by a literal, plain-Python reading of ASTM E1049-85; slow, for tests.
+
+    The same cycles as :func:`rainflow`, written to be read rather than fast (as fatpack's
+    pure-Python counter is): no compiled code, no shared helper but the input check.
+
+    Parameters
+    ----------
+    series : array_like, shape (nt,)
+        Load record.
+    residue : {"half", "close"}
+        ``"half"``: section 5.4.4, *Rainflow Counting* (three-point rule, the starting point
+        discarded as a half cycle, the residue counted as half cycles). ``"close"``: section
+        5.4.5, *Simplified Rainflow Counting for Repeating Histories*: the record, treated as
+        one period of a periodic signal, is rearranged to start (and end) at its maximum
+        peak, and every range is counted as a full cycle.
+
+    Returns
+    -------
+    ranges, means, counts : ndarray
+        As :func:`rainflow`, in the order ASTM counts them.
+    """
+    if residue not in RESIDUE_METHODS:
+        raise ValueError(f"residue must be one of {RESIDUE_METHODS}, got {residue!r}")
+    x = _as_series(series).tolist()
+    cycles: list[tuple[float, float, float]] = []
+    if len(x) >= 2 and residue == "half":
+        _astm_5_4_4(_reversal_values(x), cycles)
+    elif len(x) >= 2:
+        k = x.index(max(x))
+        _astm_5_4_5(_reversal_values(x[k:] + x[:k] + [x[k]]), cycles)
+    out = np.array(cycles, dtype=float).reshape(-1, 3)
+    return out[:, 0].copy(), out[:, 1].copy(), out[:, 2].copy()
+
+
+def _reversal_values(x: list[float]) -> list[float]:
+    """The first sample, every peak and valley (a plateau once), the last sample."""
+    points = [x[0]]
+    for v in x[1:]:
+        if v == points[-1]:
+            continue  # plateau
+        if len(points) >= 2 and (points[-1] > points[-2]) == (v > points[-1]):
+            points[-1] = v  # still rising (or falling): the last point was no reversal
+        else:
+            points.append(v)
+    if len(points) == 1:
+        points.append(x[-1])  # a constant record: its first and last samples
+    return points
+
+
+def _cycle(a: float, b: float, count: float) -> tuple[float, float, float]:
+    return abs(b - a), 0.5 * (a + b), count
+
+
+def _astm_5_4_4(points: list[float], cycles: list[tuple[float, float, float]]) -> None:
+    # X: the range of the two most recent points; Y: the range before it; S: stack[0]
+    stack: list[float] = []
+    for p in points:
+        stack.append(p)  # (1) read the next peak or valley
+        while len(stack) >= 3:  # (2) fewer than three points: read on
+            x_range = abs(stack[-1] - stack[-2])
+            y_range = abs(stack[-2] - stack[-3])
+            if x_range < y_range:  # (3a)
+                break
+            if len(stack) == 3:  # (4) Y contains S -> (5): a half cycle, S moves on
+                cycles.append(_cycle(stack[0], stack[1], 0.5))
+                del stack[0]
+            else:  # (4) one cycle; discard both points of Y
+                cycles.append(_cycle(stack[-3], stack[-2], 1.0))
+                del stack[-3:-1]
+    for a, b in zip(stack[:-1], stack[1:]):  # (6) every range not counted: a half cycle
+        cycles.append(_cycle(a, b, 0.5))
+
+
+def _astm_5_4_5(points: list[float], cycles: list[tuple[float, float, float]]) -> None:
+    # points start and end at the maximum peak (step 1 is done by the caller)
+    stack: list[float] = []
+    for p in points:
+        stack.append(p)  # (2) read the next peak or valley
+        while len(stack) >= 3:  # (3) fewer than three points: read on
+            x_range = abs(stack[-1] - stack[-2])
+            y_range = abs(stack[-2] - stack[-3])
+            if x_range < y_range:  # (4a)
+                break
+            cycles.append(_cycle(stack[-3], stack[-2], 1.0))  # (5) count Y; discard its points
+            del stack[-3:-1]
+    if len(stack) > 2:
+        raise AssertionError(f"ASTM 5.4.5 left {stack} uncounted")  # cannot happen from a maximum peak
