@@ -10,7 +10,7 @@ from collections import Counter
 import numpy as np
 import pytest
 import rainflow as rf_peer
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from moorlife import fatigue as fat
@@ -28,6 +28,7 @@ from moorlife.fatigue import (
     narrowband_damage,
     r4s_break_load,
     rainflow,
+    rainflow_reference,
     sn_damage,
     spectral_moments,
     stress_area,
@@ -173,6 +174,125 @@ def test_closed_residue_matches_fatpack_damage():
     s = fatpack.find_rainflow_ranges(x, k=2**16)
     assert np.sum(c * r**3) == pytest.approx(np.sum(s**3), rel=2e-3)
     assert np.sum(c) == pytest.approx(s.size)
+
+
+# ------------------------------------------------- ties, plateaus and periodic records
+# residue="close" once counted closed cycles of the residue twice when turning points tie
+# (issue 20 item 12); every check below failed on that kernel.
+def _full_cycles(r, m, c):
+    """(range, mean) -> number of cycles, half cycles counting 1/2, zero ranges left out."""
+    out: Counter = Counter()
+    for rr, mm, cc in zip(np.asarray(r, float).tolist(), np.asarray(m, float).tolist(), np.asarray(c, float).tolist()):
+        if rr > 0:
+            out[(rr, mm)] += cc
+    return out
+
+
+def _periodic_count(block, periods=3):
+    """Cycles of one period of the periodic signal ``block, block, ...``, by the rainflow
+    package (ASTM half-cycle residue) alone: the count of ``periods + 1`` repetitions minus
+    that of ``periods``. The start-up and the residue cancel; one period of closed cycles is
+    left (checked to be the same from 2 to 4 periods)."""
+    def count(x):
+        out: Counter = Counter()
+        for rng, mean, cnt, _, _ in rf_peer.extract_cycles(list(x)):
+            if rng > 0:
+                out[(float(rng), float(mean))] += cnt
+        return out
+
+    more, fewer = count(list(block) * (periods + 1)), count(list(block) * periods)
+    diff = {k: more[k] - fewer.get(k, 0.0) for k in set(more) | set(fewer)}
+    assert all(v >= 0 for v in diff.values())
+    return Counter({k: v for k, v in diff.items() if v != 0})
+
+
+_ties = st.lists(st.integers(min_value=-3, max_value=3), min_size=2, max_size=60).map(lambda v: [float(i) for i in v])
+
+
+def test_closed_residue_with_tied_turning_points():
+    """3, 1, 3, 0 repeated: the cycles 1-3 and 0-3 once each per period (no third cycle)."""
+    r, m, c = rainflow([3.0, 1, 3, 0], residue="close")
+    assert _multiset(r, m, c) == Counter({(2.0, 2.0, 1.0): 1, (3.0, 1.5, 1.0): 1})
+    # a plateau, a tied peak and a tied valley: 0-2 twice and 1-2 once per period
+    r, m, c = rainflow([0.0, 2, 2, 0, 2, 1, 2], residue="close")
+    assert _multiset(r, m, c) == Counter({(2.0, 1.0, 1.0): 2, (1.0, 1.5, 1.0): 1})
+
+
+@settings(max_examples=300, deadline=None)
+@given(_ties, st.sampled_from(["half", "close"]))
+@example([3.0, 1.0, 3.0, 0.0], "close")
+def test_rainflow_matches_the_reference_counter(x, residue):
+    """The compiled kernel gives exactly the cycles of the plain-Python ASTM E1049-85 reading
+    (5.4.4 for "half", 5.4.5 for "close"), on small integers: plateaus and ties everywhere."""
+    assert _multiset(*rainflow(np.array(x), residue=residue)) == _multiset(*rainflow_reference(x, residue=residue))
+
+
+@settings(max_examples=300, deadline=None)
+@given(_ties)
+@example([3.0, 1.0, 3.0, 0.0])
+def test_closed_residue_is_one_period_of_the_repeated_record(block):
+    """"close" treats the record as one period of a periodic signal: its cycles are those of
+    one period (independent count), and a record of k periods has k times its cycles."""
+    once = _full_cycles(*rainflow(np.array(block), residue="close"))
+    assert once == _periodic_count(block)
+    assert _full_cycles(*rainflow_reference(block, residue="close")) == once
+    thrice = _full_cycles(*rainflow(np.array(block * 3), residue="close"))
+    assert thrice == Counter({k: 3 * v for k, v in once.items()})
+
+
+@settings(max_examples=200, deadline=None)
+@given(_ties)
+@example([3.0, 1.0, 3.0, 0.0])
+def test_reference_close_matches_fatpack_four_point_count(block):
+    """fatpack's four-point counter on the periodic record arranged to start and end at its
+    maximum (ASTM 5.4.5 step 1); its residue is then max, min, max: one more cycle. The
+    reference and the compiled kernel both give these cycles.
+    (fatpack's own residue join, concatenate_reversals, is not used: in fatpack 0.7.8 it
+    drops the wrong point when one end of the residue is not a reversal, e.g. it gives
+    the range 3 for 0, 2, 3, -3 repeated, whose cycle is 6.)"""
+    fatpack = pytest.importorskip("fatpack")
+    k = int(np.argmax(block))
+    rev, _ = turning_points(block[k:] + block[:k] + [block[k]])
+    ref: Counter = Counter()
+    if rev.size >= 3:
+        cycles, res = fatpack.find_rainflow_cycles(rev)
+        assert res.size == 3 and res[0] == res[2] == rev[0]
+        for a, b in [*np.asarray(cycles).reshape(-1, 2).tolist(), res[:2].tolist()]:
+            ref[(abs(b - a), 0.5 * (a + b))] += 1.0
+    assert _full_cycles(*rainflow_reference(block, residue="close")) == ref
+    assert _full_cycles(*rainflow(np.array(block), residue="close")) == ref
+
+
+def _sampled_cosine():
+    t = np.arange(36_000) * 0.1  # 1 h at 10 Hz: 360 periods of 10 s
+    return np.cos(2 * np.pi * (t / 10 + 0.3))
+
+
+def test_sampled_cosine_closes_to_one_cycle_per_period():
+    """Sampled peaks tie in floating point; "close" gives 360 cycles (as fatpack does), not 719."""
+    x = _sampled_cosine()
+    r, m, c = rainflow(x, residue="close")
+    assert np.all(c == 1.0) and c.sum() == 360
+    assert _multiset(r, m, c) == _multiset(*rainflow_reference(x, residue="close"))
+    fatpack = pytest.importorskip("fatpack")
+    s = fatpack.find_rainflow_ranges(x, k=2**16)
+    assert s.size == 360 and np.sum(r**3) == pytest.approx(np.sum(s**3), rel=1e-4)
+    # the damage: the half-cycle count's (360.5 cycles) within 0.2 %, and the compiled path's
+    half = hourly_damage(x, 3600.0, link_diameter=0.1, mbs=1e7, residue="half")
+    close = hourly_damage(x, 3600.0, link_diameter=0.1, mbs=1e7, residue="close")
+    ref = fat.cycle_damage(*rainflow_reference(x, residue="close"), link_diameter=0.1, mbs=1e7)
+    assert close[0] == pytest.approx(ref[0], rel=1e-12) and close[1] == pytest.approx(ref[1], rel=1e-12)
+    assert close[0] == pytest.approx(half[0], rel=2e-3) and close[1] == pytest.approx(half[1], rel=2e-3)
+
+
+def test_repeated_float_block_closes_to_its_period():
+    """A random float block with a tied peak, repeated 7 times: 7 times one period's cycles."""
+    block = np.round(np.random.default_rng(3).normal(size=40), 1)
+    block[[5, 17]] = block.max() + 1.0  # two equal maxima
+    once = _full_cycles(*rainflow(block, residue="close"))
+    assert once == _periodic_count(block.tolist())
+    seven = _full_cycles(*rainflow(np.tile(block, 7), residue="close"))
+    assert seven == Counter({k: 7 * v for k, v in once.items()})
 
 
 # --------------------------------------------------------------------------- curves and damage
