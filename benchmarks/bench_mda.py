@@ -38,7 +38,7 @@ def hindcast_points() -> tuple[np.ndarray, str]:
         from moorlife import metocean
 
         t = metocean.hourly_time("1985-01-01T00:00", "2015-12-31T23:00")
-        d = metocean.generate_synthetic(t, metocean.SyntheticParams(), SEED, 90.0, 0.14)
+        d = metocean.generate_synthetic(t, metocean.SyntheticParams.from_config({}), SEED, 90.0, 0.14)
         return np.column_stack([d[v] for v in names.METOCEAN_VARS]), "moorlife.metocean synthetic BiMEP-like"
     except Exception as exc:  # the generator is optional for this benchmark
         print(f"(moorlife.metocean unavailable: {exc}; using a seeded random stand-in)")

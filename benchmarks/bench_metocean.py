@@ -58,7 +58,7 @@ def main() -> None:
     time_axis = hourly_time(START, END)
     n = time_axis.size
     print(f"hindcast: {n:,} hourly sea states ({START} .. {END}); target < {TARGET_S:.0f} s each")
-    t_gen, _ = best_of(lambda: generate_synthetic(time_axis, SyntheticParams(), 20190601, 90.0, 0.14))
+    t_gen, _ = best_of(lambda: generate_synthetic(time_axis, SyntheticParams.from_config({}), 20190601, 90.0, 0.14))
     t_build, ds = best_of(lambda: build_hindcast(cfg, 20190601))
     print(f"generate_synthetic (kernel)          {t_gen:7.3f} s")
     print(f"build_hindcast (synthetic + Dataset) {t_build:7.3f} s")

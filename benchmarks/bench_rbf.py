@@ -48,7 +48,7 @@ def hindcast_points() -> np.ndarray:
     from moorlife import metocean
 
     t = metocean.hourly_time("1985-01-01T00:00", "2015-12-31T23:00")
-    d = metocean.generate_synthetic(t, metocean.SyntheticParams(), SEED, 90.0, 0.14)
+    d = metocean.generate_synthetic(t, metocean.SyntheticParams.from_config({}), SEED, 90.0, 0.14)
     return np.column_stack([d[v] for v in names.METOCEAN_VARS])
 
 
@@ -114,7 +114,7 @@ def main() -> None:
     rbf.predict_rbf(rbf.fit_rbf(pts[train[:50]], y[:50, :2], is_direction=MASK, shape=0.2), pts[:100])
 
     # 1. ours at paper scale
-    st = RBFSettings()
+    st = RBFSettings.from_config({})
     grid = rbf.shape_grid(st.grid_min, st.grid_max, st.grid_n)
     print(f"settings: q0 grid {st.grid_min}-{st.grid_max} x {st.grid_n}, smoothing {st.smoothing}, "
           f"share_tol {st.share_tol}")

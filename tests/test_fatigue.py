@@ -493,10 +493,13 @@ def test_fatigue_settings_from_config_section():
     )
     assert s.corrosion_rate == pytest.approx(0.4e-3) and s.corrosion_step == 2.0
     assert s.damage_kwargs()["mean_stress"] == "gerber" and s.damage_kwargs()["residue"] == "close"
-    with pytest.raises(ValueError, match="fatigue.mean_stress.method = 'walker'"):
+    with pytest.raises(ValueError, match="'fatigue.mean_stress.method' = 'walker'"):
         fatigue_settings({"mean_stress": {"method": "walker"}})
-    with pytest.raises(ValueError, match="fatigue.curves"):
-        fatigue_settings({"curves": {"sn": {"studless": {"a_d": 1.0, "m": 3.0}}, "tn": {}}})
+    with pytest.raises(ValueError, match="'fatigue.curves.tn.stud.m' = -3.0"):
+        fatigue_settings({"curves": {"sn": {"studless": {"a_d": 1.0, "m": 3.0}}, "tn": {"stud": {"m": -3.0}}}})
+    # a partial curves section keeps the schema defaults of the rest
+    part = fatigue_settings({"curves": {"sn": {"studless": {"a_d": 1.0}}}})
+    assert part.curves["sn"]["studless"] == {"a_d": 1.0, "m": 3.0} and part.curves["tn"] == fat.DEFAULT_CURVES["tn"]
 
 
 # --------------------------------------------------------------------------- spectral checks

@@ -240,7 +240,7 @@ def test_nan_value_error_and_gap_policy(tmp_path, caplog):
     with pytest.raises(HindcastError, match=rf"bad\.csv: column 'hs', row {line} \(time 2000-01-01T10:00:00\): 1 hour\(s\) missing or NaN"):
         load(p)
     with caplog.at_level(logging.WARNING, logger="moorlife"):
-        ds = load(p, cleaning=CleaningPolicy(max_gap_hours=1))
+        ds = load(p, cleaning=CleaningPolicy.from_config({"max_gap_hours": 1}))
     assert "interpolated 1 gap(s)" in caplog.text and "'hs'" in caplog.text
     assert ds["hs"].values[10] == pytest.approx(0.5 * (df["hs"][9] + df["hs"][11]))
 
@@ -251,8 +251,8 @@ def test_missing_rows_error_and_gap_policy(tmp_path):
     with pytest.raises(HindcastError, match=rf"missing row after row {data_line(p, 19)} \(time 2000-01-01T20:00:00\): 3 hour\(s\)"):
         load(p)
     with pytest.raises(HindcastError, match="max_gap_hours = 2"):
-        load(p, cleaning=CleaningPolicy(max_gap_hours=2))
-    ds = load(p, cleaning=CleaningPolicy(max_gap_hours=3))
+        load(p, cleaning=CleaningPolicy.from_config({"max_gap_hours": 2}))
+    ds = load(p, cleaning=CleaningPolicy.from_config({"max_gap_hours": 3}))
     assert ds.sizes["time"] == N
     full = nora3_frame()
     np.testing.assert_allclose(ds["hs"].values[20:23], full["hs"].values[20:23])  # linear data: exact
@@ -264,7 +264,7 @@ def test_direction_interpolation_across_north(tmp_path):
     df = nora3_frame()
     df["wind_direction_100m"] = np.where(np.arange(N) < 11, 350.0, 20.0)
     df.loc[11:12, "wind_direction_100m"] = np.nan  # 350 -> ?, ? -> 20: shorter arc through north
-    ds = load(_bad(tmp_path, df), cleaning=CleaningPolicy(max_gap_hours=2))
+    ds = load(_bad(tmp_path, df), cleaning=CleaningPolicy.from_config({"max_gap_hours": 2}))
     np.testing.assert_allclose(ds["wind_dir"].values[10:14], [350.0, 0.0, 10.0, 20.0], atol=1e-9)
 
 
@@ -303,7 +303,7 @@ def test_wrap_directions_policy_and_360_is_north(tmp_path, caplog):
     with pytest.raises(HindcastError, match="wrap_directions"):
         load(p)
     with caplog.at_level(logging.INFO, logger="moorlife"):
-        ds = load(p, cleaning=CleaningPolicy(wrap_directions=True))
+        ds = load(p, cleaning=CleaningPolicy.from_config({"wrap_directions": True}))
     assert ds["wind_dir"].values[3] == pytest.approx(10.0)
     assert ds["wind_dir"].values[4] == 0.0
     assert "wrapped 1 direction(s)" in caplog.text and "read as north" in caplog.text
@@ -315,7 +315,7 @@ def test_duplicated_timestamps(tmp_path):
     p = _bad(tmp_path, df)
     with pytest.raises(HindcastError, match=rf"column 'time', row {data_line(p, 6)}: duplicated timestamp 2000-01-01 05:00:00"):
         load(p)
-    ds = load(p, cleaning=CleaningPolicy(duplicates="first"))
+    ds = load(p, cleaning=CleaningPolicy.from_config({"duplicates": "first"}))
     assert ds.sizes["time"] == N
 
 
@@ -325,7 +325,7 @@ def test_unsorted_timestamps(tmp_path):
     p = _bad(tmp_path, df)
     with pytest.raises(HindcastError, match=rf"row {data_line(p, 6)}: 2000-01-01 05:00:00 comes after 2000-01-01 06:00:00"):
         load(p)
-    ds = load(p, cleaning=CleaningPolicy(unsorted="sort"))
+    ds = load(p, cleaning=CleaningPolicy.from_config({"unsorted": "sort"}))
     np.testing.assert_allclose(ds["hs"], nora3_frame()["hs"])
 
 

@@ -47,7 +47,7 @@ def _sims(cases: xr.Dataset, damage=(2e-6, 5e-6, 1e-6)) -> xr.Dataset:
     return ds
 
 
-SETTINGS = lifecycle.RBFSettings(shape_mode="fixed", outputs=lifecycle.DEFAULT_OUTPUTS)
+SETTINGS = lifecycle.RBFSettings.from_config({"shape": "fixed", "outputs": list(lifecycle.DEFAULT_OUTPUTS)})
 
 
 @pytest.fixture(scope="module")
@@ -220,7 +220,7 @@ def test_rippa_mode_and_other_transform_are_reported():
     rng = np.random.default_rng(7)
     dmg = 1e-6 * (cases["hs"].values[:, None] ** 3) * np.array([1.0, 2.0, 0.5]) * (1 + 0.05 * rng.random((75, 3)))
     sims["damage_sn"] = (("case", "line"), dmg)
-    settings = lifecycle.RBFSettings(grid_n=8, outputs=lifecycle.DEFAULT_OUTPUTS)
+    settings = lifecycle.RBFSettings.from_config({"grid": {"n": 8}, "outputs": list(lifecycle.DEFAULT_OUTPUTS)})
     ds = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=0)
     assert np.all(ds["validation_r"].sel(output="damage_sn/M2") > 0.95)
     assert np.isfinite(ds["validation_r_other_transform"].sel(output="damage_sn/M2"))
@@ -325,7 +325,7 @@ def test_selection_normalisation_is_used_in_any_attribute_order():
     lo = {"wind_speed": -5.0, "wind_dir": 0.0, "hs": 0.0, "tp": 2.0, "wave_dir": 0.0}
     span = {"wind_speed": 40.0, "wind_dir": 180.0, "hs": 10.0, "tp": 20.0, "wave_dir": 180.0}
     cases.attrs.update(norm_variables=order, norm_lo=[lo[v] for v in order], norm_span=[span[v] for v in order])
-    settings = lifecycle.RBFSettings(shape_mode="fixed", outputs=("surge_mpm",))
+    settings = lifecycle.RBFSettings.from_config({"shape": "fixed", "outputs": ["surge_mpm"]})
     a = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=0)
     # the same space given in METOCEAN_VARS order gives identical numbers
     cases.attrs.update(norm_variables=list(names.METOCEAN_VARS), norm_lo=[lo[v] for v in names.METOCEAN_VARS],

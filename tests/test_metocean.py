@@ -31,7 +31,7 @@ def full(config):
     """The default 31-year synthetic hindcast (the study's, with the study's seed)."""
     h = config["hindcast"]
     time = mo.hourly_time(h["start"], h["end"])
-    params = mo.SyntheticParams.from_mapping(h["synthetic"])
+    params = mo.SyntheticParams.from_config(h["synthetic"])
     return time, mo.generate_synthetic(time, params, config["seed"], h["hub_height"], h["shear_exponent"])
 
 
@@ -62,7 +62,7 @@ def test_wind_from_uv_roundtrip():
 
 
 def test_regime_series_frequencies_follow_seasonal_probabilities():
-    p = mo.WindParams(veer_hours=0.0)
+    p = mo.WindParams.from_config({"veer_hours": 0.0})
     t = pd.date_range("1985-01-01", "2014-12-31T23:00", freq="h").values
     season = mo.annual_cycle(t, 15.0)
     direction, spread, factor = mo.regime_series(np.random.default_rng(2), season, p)
@@ -149,8 +149,8 @@ def test_hourly_time_paper_period_and_errors():
 # -------------------------------------------------------------------------- configuration
 def test_config_equals_dataclass_defaults(config):
     h = config["hindcast"]
-    assert mo.SyntheticParams.from_mapping(h["synthetic"]) == mo.SyntheticParams()
-    assert mo.CleaningPolicy.from_mapping(h["cleaning"]) == mo.CleaningPolicy()
+    assert mo.SyntheticParams.from_config(h["synthetic"]) == mo.SyntheticParams.from_config({})
+    assert mo.CleaningPolicy.from_config(h["cleaning"]) == mo.CleaningPolicy.from_config({})
 
 
 def test_schema_defaults_equal_config():
@@ -168,17 +168,17 @@ def test_schema_defaults_equal_config():
     walk(raw, schema, "hindcast")
 
 
-def test_from_mapping_rejects_unknown_keys():
+def test_from_config_rejects_unknown_keys():
     with pytest.raises(ValueError, match="tp_bse"):
-        mo.SyntheticParams.from_mapping({"swell": {"tp_bse": 1.0}})
+        mo.SyntheticParams.from_config({"swell": {"tp_bse": 1.0}})
     with pytest.raises(ValueError, match="stroms"):
-        mo.SyntheticParams.from_mapping({"stroms": {}})
+        mo.SyntheticParams.from_config({"stroms": {}})
 
 
 # ---------------------------------------------------------------------- synthetic climate
 def test_generation_is_seeded_and_bit_identical():
     t = mo.hourly_time("1990-01-01", "1992-12-31T23:00")
-    p = mo.SyntheticParams()
+    p = mo.SyntheticParams.from_config({})
     a = mo.generate_synthetic(t, p, 7, 90.0, 0.14)
     b = mo.generate_synthetic(t, p, 7, 90.0, 0.14)
     c = mo.generate_synthetic(t, p, 8, 90.0, 0.14)
@@ -189,7 +189,7 @@ def test_generation_is_seeded_and_bit_identical():
 
 def test_hub_height_lift_exact():
     t = mo.hourly_time("1990-01-01", "1990-03-31T23:00")
-    p = mo.SyntheticParams()
+    p = mo.SyntheticParams.from_config({})
     at_ref = mo.generate_synthetic(t, p, 3, p.reference_height, 0.14)
     at_hub = mo.generate_synthetic(t, p, 3, 90.0, 0.14)
     np.testing.assert_allclose(at_hub["wind_speed"], at_ref["wind_speed"] * (90.0 / 10.0) ** 0.14, rtol=1e-13)
@@ -292,7 +292,7 @@ def test_storms_bring_wind_and_waves_from_west(full):
 @pytest.mark.parametrize("seed", [1, 2])
 def test_other_seeds_stay_in_wider_bands(seed):
     t = mo.hourly_time("1985-01-01", "2015-12-31T23:00")
-    o = mo.generate_synthetic(t, mo.SyntheticParams(), seed, 90.0, 0.14)
+    o = mo.generate_synthetic(t, mo.SyntheticParams.from_config({}), seed, 90.0, 0.14)
     assert 1.5 <= o["hs"].mean() <= 2.0
     assert 8.5 <= o["hs"].max() <= 13.0
     assert 8.0 <= o["wind_speed"].mean() <= 9.0
@@ -363,7 +363,7 @@ def test_hindcast_dataset_requires_waves():
 
 def test_params_are_frozen():
     with pytest.raises(dataclasses.FrozenInstanceError):
-        mo.SyntheticParams().tp_min = 1.0  # type: ignore[misc]
+        mo.SyntheticParams.from_config({}).tp_min = 1.0  # type: ignore[misc]
 
 
 # ------------------------------------------------------------------------------- figures

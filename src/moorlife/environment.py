@@ -27,13 +27,16 @@ mix wind sea and swell; a fixed value (3.3, or the paper's validation 2.2) is a 
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 import scipy.fft
 
 from moorlife.conventions import case_rng, propagation_angle
+from moorlife.settings import WindSettings
 
 __all__ = [
     "G",
@@ -214,19 +217,29 @@ def kaimal_spectrum(
     return sigma**2 * 4.0 * tl / (1.0 + 6.0 * f * tl) ** (5.0 / 3.0)
 
 
+def _wind_settings(cfg: Mapping[str, Any]) -> WindSettings:
+    """The ``simulation.wind`` section (without the ``height`` the simulator adds), schema-filled."""
+    return WindSettings.from_config({k: v for k, v in cfg.items() if k != "height"}, source="config.yaml")
+
+
 def wind_spectrum(f: npt.ArrayLike, u_hub: npt.ArrayLike, cfg: dict) -> np.ndarray:
     """The configured wind spectrum (``cfg`` is the ``simulation.wind`` config section).
+
+    Missing keys take the schema defaults; ``height`` (hub height, m) is needed by ``npd``.
 
     Returns
     -------
     numpy.ndarray, shape (..., nf)
         m2 s-2 Hz-1; zero everywhere when ``cfg["spectrum"] == "none"`` (steady wind).
     """
-    kind = cfg.get("spectrum", "npd")
+    w = _wind_settings(cfg)
+    kind = w.spectrum
     if kind == "npd":
-        return npd_spectrum(f, u_hub, float(cfg.get("height", 90.0)))
+        if "height" not in cfg:
+            raise ValueError("simulation.wind: the NPD spectrum needs the hub 'height' in m")
+        return npd_spectrum(f, u_hub, float(cfg["height"]))
     if kind == "kaimal":
-        return kaimal_spectrum(f, u_hub, float(cfg["turbulence_intensity"]), float(cfg["length_scale"]))
+        return kaimal_spectrum(f, u_hub, w.turbulence_intensity, w.length_scale)
     if kind == "none":
         return np.zeros(np.shape(u_hub) + np.shape(f))
     raise ValueError(f"simulation.wind.spectrum = {kind!r}: expected 'npd', 'kaimal' or 'none'")
@@ -393,7 +406,7 @@ def wind_series(
     u = np.atleast_1d(np.asarray(u_hub, dtype=float))
     w = grid.omega
     f = w / (2.0 * np.pi)
-    keep = np.flatnonzero((f > 0) & (f <= float(cfg.get("f_max", 1.0))))
+    keep = np.flatnonzero((f > 0) & (f <= _wind_settings(cfg).f_max))
     s_f = wind_spectrum(f[keep], u, cfg)  # per Hz
     amp = np.sqrt(2.0 * s_f * (grid.d_omega / (2.0 * np.pi))) * np.exp(1j * phases[:, keep])
     return u[:, None] + synthesise(amp, keep, grid)

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -12,6 +12,7 @@ import numpy.typing as npt
 from moorlife.fatigue.chain import MEAN_STRESS_METHODS
 from moorlife.fatigue.counting import RESIDUE_METHODS
 from moorlife.fatigue.design import design_fatigue_factor
+from moorlife.settings import fill_section, section_defaults
 
 CHAINS = ("studless", "stud")
 
@@ -40,12 +41,9 @@ class TNCurve:
             raise ValueError(f"T-N curve needs k > 0 and m > 0, got k={self.k!r}, m={self.m!r}")
 
 
-#: DNVGL-OS-E301 (Ch.2 Sec.2) S-N and API RP 2SK T-N curves for chain; also the
-#: ``fatigue.curves`` defaults of ``config/config.yaml``.
-DEFAULT_CURVES: dict[str, dict[str, dict[str, float]]] = {
-    "sn": {"studless": {"a_d": 6.0e10, "m": 3.0}, "stud": {"a_d": 1.2e11, "m": 3.0}},
-    "tn": {"studless": {"k": 316.0, "m": 3.0}, "stud": {"k": 1000.0, "m": 3.0}},
-}
+#: DNVGL-OS-E301 (Ch.2 Sec.2) S-N and API RP 2SK T-N curves for chain: the
+#: ``fatigue.curves`` defaults of the config schema (read from it, not repeated here).
+DEFAULT_CURVES: dict[str, dict[str, dict[str, float]]] = section_defaults("fatigue.curves")
 
 
 def get_curves(chain: str = "studless", curves: Mapping[str, Any] | None = None) -> tuple[SNCurve, TNCurve]:
@@ -85,25 +83,76 @@ def get_curves(chain: str = "studless", curves: Mapping[str, Any] | None = None)
 class FatigueSettings:
     """The ``fatigue:`` config section, in the units the kernels take.
 
-    Build it with :func:`fatigue_settings`. ``corrosion_rate`` is in m/year here
-    (``mm/year`` in the config file).
+    Build it with :meth:`from_config` (missing keys take the schema defaults).
+    ``corrosion_rate`` is in m/year here (``mm/year`` in the config file).
     """
 
-    curves: Mapping[str, Any] = field(default_factory=lambda: DEFAULT_CURVES)
-    design_life: float = 25.0
-    corrosion_rate: float = 0.2e-3
-    corrosion_step: float = 5.0
-    mean_stress: str = "none"
-    ultimate: float = 960.0
-    yield_: float = 700.0
-    residue: str = "half"
-    dnv_base: float = 5.0
-    dnv_threshold: float = 0.8
-    dnv_increment: float = 3.0
-    dnv_span: float = 0.2
-    api_factor: float = 3.0
-    rule_sn: str = "dnv"
-    rule_tn: str = "api"
+    curves: Mapping[str, Any]
+    design_life: float
+    corrosion_rate: float
+    corrosion_step: float
+    mean_stress: str
+    ultimate: float
+    yield_: float
+    residue: str
+    dnv_base: float
+    dnv_threshold: float
+    dnv_increment: float
+    dnv_span: float
+    api_factor: float
+    rule_sn: str
+    rule_tn: str
+
+    @classmethod
+    def from_config(cls, section: Mapping[str, Any] | None, source: str = "config.yaml") -> FatigueSettings:
+        """Build from the ``fatigue:`` config section.
+
+        Parameters
+        ----------
+        section : mapping or None
+            ``config["fatigue"]``, possibly partial: missing keys take the schema defaults.
+        source : str
+            Quoted in error messages.
+
+        Raises
+        ------
+        moorlife.config.ConfigError
+            For an unknown key or an invalid value, naming the dotted key.
+        """
+        s = fill_section("fatigue", section, source)
+        cor, ms, df = s["corrosion"], s["mean_stress"], s["design_factor"]
+        dnv = df["dnv"]
+        method = ms["method"]
+        if method not in MEAN_STRESS_METHODS:
+            raise ValueError(
+                f"{source}: fatigue.mean_stress.method = {method!r}; expected one of {MEAN_STRESS_METHODS}"
+            )
+        residue = s["residue"]
+        if residue not in RESIDUE_METHODS:
+            raise ValueError(f"{source}: fatigue.residue = {residue!r}; expected one of {RESIDUE_METHODS}")
+        curves = s["curves"]
+        for chain in CHAINS:  # fail early with the key named
+            try:
+                get_curves(chain, curves)
+            except ValueError as exc:
+                raise ValueError(f"{source}: fatigue.curves: {exc}") from None
+        return cls(
+            curves=curves,
+            design_life=float(s["design_life"]),
+            corrosion_rate=float(cor["rate"]) * 1e-3,
+            corrosion_step=float(cor["step"]),
+            mean_stress=method,
+            ultimate=float(ms["ultimate"]),
+            yield_=float(ms["yield"]),
+            residue=residue,
+            dnv_base=float(dnv["base"]),
+            dnv_threshold=float(dnv["threshold"]),
+            dnv_increment=float(dnv["increment"]),
+            dnv_span=float(dnv["span"]),
+            api_factor=float(df["api"]),
+            rule_sn=str(df["sn"]),
+            rule_tn=str(df["tn"]),
+        )
 
     def damage_kwargs(self) -> dict[str, Any]:
         """Keyword arguments of :func:`hourly_damage` (without corrosion age)."""
@@ -134,47 +183,5 @@ class FatigueSettings:
 
 
 def fatigue_settings(section: Mapping[str, Any] | None = None, source: str = "config.yaml") -> FatigueSettings:
-    """Build :class:`FatigueSettings` from the ``fatigue:`` config section.
-
-    Parameters
-    ----------
-    section : mapping, optional
-        The validated ``config["fatigue"]`` (schema defaults filled in). Missing keys
-        take the defaults of the schema.
-    source : str
-        Quoted in error messages.
-    """
-    s = dict(section or {})
-    cor = dict(s.get("corrosion", {}))
-    ms = dict(s.get("mean_stress", {}))
-    df = dict(s.get("design_factor", {}))
-    dnv = dict(df.get("dnv", {}))
-    method = ms.get("method", "none")
-    if method not in MEAN_STRESS_METHODS:
-        raise ValueError(f"{source}: fatigue.mean_stress.method = {method!r}; expected one of {MEAN_STRESS_METHODS}")
-    residue = s.get("residue", "half")
-    if residue not in RESIDUE_METHODS:
-        raise ValueError(f"{source}: fatigue.residue = {residue!r}; expected one of {RESIDUE_METHODS}")
-    curves = s.get("curves", DEFAULT_CURVES)
-    for chain in CHAINS:  # fail early with the key named
-        try:
-            get_curves(chain, curves)
-        except ValueError as exc:
-            raise ValueError(f"{source}: fatigue.curves: {exc}") from None
-    return FatigueSettings(
-        curves=curves,
-        design_life=float(s.get("design_life", 25.0)),
-        corrosion_rate=float(cor.get("rate", 0.2)) * 1e-3,
-        corrosion_step=float(cor.get("step", 5.0)),
-        mean_stress=method,
-        ultimate=float(ms.get("ultimate", 960.0)),
-        yield_=float(ms.get("yield", 700.0)),
-        residue=residue,
-        dnv_base=float(dnv.get("base", 5.0)),
-        dnv_threshold=float(dnv.get("threshold", 0.8)),
-        dnv_increment=float(dnv.get("increment", 3.0)),
-        dnv_span=float(dnv.get("span", 0.2)),
-        api_factor=float(df.get("api", 3.0)),
-        rule_sn=str(df.get("sn", "dnv")),
-        rule_tn=str(df.get("tn", "api")),
-    )
+    """Alias of :meth:`FatigueSettings.from_config` (kept for its callers)."""
+    return FatigueSettings.from_config(section, source)

@@ -251,7 +251,7 @@ def life_summary(
         ``design_life_years`` (..., nline): age at which DFF x damage reaches 1;
         ``passes`` (..., nline): ``DFF x lifecycle_damage <= 1``.
     """
-    st = settings or FatigueSettings()
+    st = settings or FatigueSettings.from_config({})
     d = np.moveaxis(np.asarray(damage_per_year, dtype=float), line_axis, -1)
     if np.any(~np.isfinite(d)) or np.any(d < 0):
         raise ValueError("damage_per_year must be finite and >= 0")

@@ -18,6 +18,7 @@ import xarray as xr
 from moorlife.hydro.body import gravity_stiffness, motion_rao, system_mass_properties
 from moorlife.hydro.mesh import capytaine_body, members_from_config
 from moorlife.names import DOFS
+from moorlife.settings import HydroSettings, fill_section, section_defaults
 
 log = logging.getLogger(__name__)
 
@@ -67,29 +68,31 @@ def bem_settings(hydro_cfg: Mapping, platform_cfg: Mapping) -> dict:
     are included because the mean drift coefficients depend on the body motions. For
     ``source: wamit`` only the file prefix and the environment matter.
     """
-    if hydro_cfg["source"] == "wamit":  # only the files (rule inputs) and the redimensionalisation
-        return {"source": "wamit", "wamit_prefix": hydro_cfg.get("wamit_prefix"),
+    h = HydroSettings.from_config(hydro_cfg, source="config.yaml")
+    raw = fill_section("hydro", hydro_cfg, source="config.yaml")  # the omega grid as written
+    if h.source == "wamit":  # only the files (rule inputs) and the redimensionalisation
+        return {"source": "wamit", "wamit_prefix": h.wamit_prefix,
                 "environment": dict(platform_cfg["environment"])}
-    res = hydro_cfg["mesh"]["resolution"]
-    sizes = hydro_cfg["mesh"]["panel_size"]
+    res = h.mesh_resolution
+    sizes = h.panel_size
     if res not in sizes:
         raise ValueError(f"hydro.mesh.resolution = {res!r} is not one of hydro.mesh.panel_size {sorted(sizes)}")
-    around = float(hydro_cfg["mesh"].get("around_refinement", 1.0))
+    around = h.around_refinement
     # omitted at its default 1.0: the mesh is then the one from before the option existed, and
     # the settings (the rule's params) of existing runs stay valid, so no BEM reruns for nothing
     extra = {"around_refinement": around} if around != 1.0 else {}
     return {
-        "source": hydro_cfg["source"],
-        "wamit_prefix": hydro_cfg.get("wamit_prefix"),
+        "source": h.source,
+        "wamit_prefix": h.wamit_prefix,
         "environment": dict(platform_cfg["environment"]),
         "members": [dict(m) for m in platform_cfg["members"]],
-        "omega": dict(hydro_cfg["omega"]),
-        "heading_step": float(hydro_cfg["heading_step"]),
-        "panel_size": float(sizes[res]),
-        "richardson": bool(hydro_cfg["mesh"].get("richardson", False)),
-        "rotational_symmetry": hydro_cfg["mesh"].get("rotational_symmetry"),
-        "irregular_frequency_removal": bool(hydro_cfg["irregular_frequency_removal"]),
-        "kochin_directions": int(hydro_cfg["kochin_directions"]),
+        "omega": dict(raw["omega"]),
+        "heading_step": h.heading_step,
+        "panel_size": sizes[res],
+        "richardson": h.richardson,
+        "rotational_symmetry": h.rotational_symmetry,
+        "irregular_frequency_removal": h.irregular_frequency_removal,
+        "kochin_directions": h.kochin_directions,
         "bodies": {k: dict(platform_cfg[k]) for k in ("platform", "tower", "rna")},
         "mooring_stiffness_diag": list(platform_cfg.get("mooring_stiffness_diag", [0.0] * 6)),
         **extra,
@@ -384,7 +387,8 @@ def _bem_one_mesh(settings: Mapping, panel_size: float, n_jobs: int) -> xr.Datas
     omega = frequency_grid(om["min"], om["max"], om["n"])
     headings = heading_grid(settings["heading_step"])
     M, mtot, cg = system_mass_properties(settings["bodies"], "hydro params")
-    around = float(settings.get("around_refinement", 1.0))  # omitted at its default (bem_settings)
+    # omitted at its schema default (bem_settings)
+    around = float(settings.get("around_refinement", section_defaults("hydro.mesh")["around_refinement"]))
     body = capytaine_body(members, panel_size, rotational_symmetry=settings.get("rotational_symmetry"),
                           lid=settings["irregular_frequency_removal"], around=around)
     rho, g, h = float(env["rho_water"]), float(env["gravity"]), float(env["water_depth"])

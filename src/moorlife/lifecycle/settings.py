@@ -6,7 +6,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from moorlife.lifecycle.outputs import DEFAULT_OUTPUTS
+from moorlife.settings import fill_section
 
 __all__ = ["RBFSettings", "rbf_settings"]
 
@@ -36,52 +36,56 @@ class RBFSettings:
         Variables of ``simulations.zarr`` to rebuild.
     """
 
-    shape_mode: str = "rippa"
-    fixed_damage: float = 0.1
-    fixed_tension: float = 0.175
-    fixed_other: float = 0.175
-    grid_min: float = 0.05
-    grid_max: float = 1.0
-    grid_n: int = 10
-    share_tol: float = 0.0
-    log_damage: bool = True
-    smoothing: tuple[float, ...] = (0.0,)
-    chunk_rows: int = 8192
-    outputs: tuple[str, ...] = DEFAULT_OUTPUTS + ("tension_mean", "surge_mean", "sway_mean")
+    shape_mode: str
+    fixed_damage: float
+    fixed_tension: float
+    fixed_other: float
+    grid_min: float
+    grid_max: float
+    grid_n: int
+    share_tol: float
+    log_damage: bool
+    smoothing: tuple[float, ...]
+    chunk_rows: int
+    outputs: tuple[str, ...]
+
+    @classmethod
+    def from_config(cls, section: Mapping[str, Any] | None, source: str = "config.yaml") -> RBFSettings:
+        """Build from ``config["lifecycle"]["rbf"]`` (missing keys take the schema defaults).
+
+        Raises
+        ------
+        ValueError
+            Naming the key and value of an invalid setting (:class:`moorlife.config.ConfigError`
+            for an unknown key or a value the schema refuses).
+        """
+        s = fill_section("lifecycle.rbf", section, source)
+        fixed, grid = s["fixed"], s["grid"]
+        mode = str(s["shape"])
+        if mode not in ("rippa", "fixed"):
+            raise ValueError(f"{source}: lifecycle.rbf.shape = {mode!r}; expected 'rippa' or 'fixed'")
+        out = cls(
+            shape_mode=mode,
+            fixed_damage=float(fixed["damage"]),
+            fixed_tension=float(fixed["tension"]),
+            fixed_other=float(fixed["other"]),
+            grid_min=float(grid["min"]),
+            grid_max=float(grid["max"]),
+            grid_n=int(grid["n"]),
+            share_tol=float(s["share_tol"]),
+            log_damage=bool(s["log_damage"]),
+            smoothing=_smoothing(s["smoothing"], source),
+            chunk_rows=int(s["chunk_rows"]),
+            outputs=tuple(s["outputs"]),
+        )
+        if not 0 < out.grid_min < out.grid_max:
+            raise ValueError(f"{source}: lifecycle.rbf.grid needs 0 < min < max, got {out.grid_min}, {out.grid_max}")
+        return out
 
 
 def rbf_settings(section: Mapping[str, Any] | None = None, source: str = "config.yaml") -> RBFSettings:
-    """Build :class:`RBFSettings` from ``config["lifecycle"]["rbf"]``.
-
-    Raises
-    ------
-    ValueError
-        Naming the key and value of an invalid setting.
-    """
-    s = dict(section or {})
-    fixed = dict(s.get("fixed", {}))
-    grid = dict(s.get("grid", {}))
-    mode = str(s.get("shape", "rippa"))
-    if mode not in ("rippa", "fixed"):
-        raise ValueError(f"{source}: lifecycle.rbf.shape = {mode!r}; expected 'rippa' or 'fixed'")
-    d = RBFSettings()
-    out = RBFSettings(
-        shape_mode=mode,
-        fixed_damage=float(fixed.get("damage", d.fixed_damage)),
-        fixed_tension=float(fixed.get("tension", d.fixed_tension)),
-        fixed_other=float(fixed.get("other", d.fixed_other)),
-        grid_min=float(grid.get("min", d.grid_min)),
-        grid_max=float(grid.get("max", d.grid_max)),
-        grid_n=int(grid.get("n", d.grid_n)),
-        share_tol=float(s.get("share_tol", d.share_tol)),
-        log_damage=bool(s.get("log_damage", d.log_damage)),
-        smoothing=_smoothing(s.get("smoothing", d.smoothing), source),
-        chunk_rows=int(s.get("chunk_rows", d.chunk_rows)),
-        outputs=tuple(s.get("outputs", d.outputs)),
-    )
-    if not 0 < out.grid_min < out.grid_max:
-        raise ValueError(f"{source}: lifecycle.rbf.grid needs 0 < min < max, got {out.grid_min}, {out.grid_max}")
-    return out
+    """Alias of :meth:`RBFSettings.from_config` (kept for its callers)."""
+    return RBFSettings.from_config(section, source)
 
 
 def _smoothing(value: Any, source: str) -> tuple[float, ...]:

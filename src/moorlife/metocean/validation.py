@@ -89,7 +89,7 @@ def validate_hindcast(
         rows, NaN/missing hours beyond the allowed gap, non-positive Hs/Tp, directions outside
         ``[0, 360)``, implausible values (units), each naming the column, row and value.
     """
-    policy = policy or CleaningPolicy()
+    policy = policy or CleaningPolicy.from_config({})
     if isinstance(df, xr.Dataset):
         df = df[[v for v in METOCEAN_VARS if v in df.data_vars]].to_dataframe().reset_index()
     labels = dict(labels or {})

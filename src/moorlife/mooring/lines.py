@@ -19,6 +19,8 @@ from typing import Any
 
 import numpy as np
 
+from moorlife.settings import fill_section, section_defaults
+
 __all__ = [
     "R4S_ULTIMATE_MPA",
     "R4S_YIELD_MPA",
@@ -42,34 +44,8 @@ __all__ = [
 R4S_ULTIMATE_MPA = 960.0
 R4S_YIELD_MPA = 700.0
 
-#: Defaults of the ``mooring:`` configuration section (mirrored in config.yaml and the schema).
-DEFAULTS: dict[str, Any] = {
-    "model": "dynamic",
-    "n_segments": 20,
-    "water_depth": 200.0,
-    "water_density": 1025.0,
-    "gravity": 9.80665,
-    "line_length": 835.5,
-    "fairlead_radius": 40.868,
-    "fairlead_depth": 14.0,
-    "anchor_radius": 837.6,
-    "line_bearings": [30.0, 270.0, 150.0],
-    "cd_normal": 2.0,
-    "cd_axial": 0.4,
-    "ca_normal": 0.8,
-    "ca_axial": 0.25,
-    "internal_damping_ratio": 1.0,
-    "seabed_stiffness": 3.0e6,
-    "seabed_damping": 3.0e5,
-    "friction_coefficient": 0.7,
-    "friction_slip_velocity": 0.01,
-    "integrator": "bdf2",
-    "max_time_step": 0.05,
-    "relaxation_time": 60.0,
-    "table_span_range": 60.0,
-    "table_height_range": 30.0,
-    "table_resolution": 0.1,
-}
+#: Defaults of the ``mooring:`` configuration section (read from the config schema).
+DEFAULTS: dict[str, Any] = section_defaults("mooring")
 
 
 @dataclass(frozen=True)
@@ -147,6 +123,7 @@ class MooringSettings:
     """Environment, hydrodynamic and numerical settings of the line models.
 
     See the ``mooring:`` section of ``workflow/schemas/config.schema.yaml`` for each field.
+    Build it with :meth:`from_config` (or :func:`mooring_settings` from a whole study config).
     """
 
     model: str
@@ -168,6 +145,37 @@ class MooringSettings:
     table_span_range: float
     table_height_range: float
     table_resolution: float
+
+    @classmethod
+    def from_config(cls, section: Mapping[str, Any] | None, source: str = "config") -> MooringSettings:
+        """Build from ``config["mooring"]`` (missing keys take the schema defaults).
+
+        Raises
+        ------
+        ValueError
+            If a value is out of range, naming the key and value
+            (:class:`moorlife.config.ConfigError` for an unknown key or a wrong type).
+        """
+        s = fill_section("mooring", section, source)
+        if s["model"] not in ("quasistatic", "dynamic"):
+            raise ValueError(f"config key 'mooring.model' = {s['model']!r} must be 'quasistatic' or 'dynamic'")
+        if s["integrator"] not in ("bdf2", "ros2"):
+            raise ValueError(f"config key 'mooring.integrator' = {s['integrator']!r} must be 'bdf2' or 'ros2'")
+        if int(s["n_segments"]) < 2:
+            raise ValueError(f"config key 'mooring.n_segments' = {s['n_segments']!r} must be at least 2")
+        names = cls.__dataclass_fields__
+        kw = {k: s[k] for k in names}
+        for k in names:
+            if k in ("model", "n_segments", "integrator"):
+                continue
+            kw[k] = float(kw[k])
+            if kw[k] < 0 or not np.isfinite(kw[k]):
+                raise ValueError(f"config key 'mooring.{k}' = {s[k]!r} must be a finite non-negative number")
+        for k in ("water_density", "gravity", "max_time_step", "table_resolution", "friction_slip_velocity"):
+            if kw[k] <= 0:
+                raise ValueError(f"config key 'mooring.{k}' = {s[k]!r} must be positive")
+        kw["n_segments"] = int(s["n_segments"])
+        return cls(**kw)
 
 
 def r4s_break_load(d_mm: float | np.ndarray) -> np.ndarray:
@@ -196,7 +204,10 @@ def chain_mass_per_length(d_mm: float | np.ndarray, chain: str = "studless") -> 
 
 
 def wet_weight_per_length(
-    mass: float, equivalent_diameter: float, water_density: float = 1025.0, gravity: float = 9.80665
+    mass: float,
+    equivalent_diameter: float,
+    water_density: float = DEFAULTS["water_density"],
+    gravity: float = DEFAULTS["gravity"],
 ) -> float:
     """Submerged weight per unit length, N/m: ``(mass - rho_w * pi / 4 * D_eq**2) * g``.
 
@@ -240,7 +251,9 @@ def _positive(row: Mapping[str, Any], key: str, name: str) -> float:
 
 
 def line_properties(
-    row: Mapping[str, Any], water_density: float = 1025.0, gravity: float = 9.80665
+    row: Mapping[str, Any],
+    water_density: float = DEFAULTS["water_density"],
+    gravity: float = DEFAULTS["gravity"],
 ) -> LineProperties:
     """Line properties from one row of ``config/mooring_systems.tsv``.
 
@@ -328,8 +341,8 @@ def check_r4s(props: LineProperties, rtol: float = 0.02) -> dict[str, float]:
 _STUDY_KEYS = frozenset({"seed", "mooring_systems", "platform", "hindcast", "selection", "simulation"})
 
 
-def _section(cfg: Mapping[str, Any] | None) -> dict[str, Any]:
-    """The ``mooring`` section (of a study config, or the section itself) over the defaults."""
+def _raw_section(cfg: Mapping[str, Any] | None) -> Mapping[str, Any]:
+    """The ``mooring`` section of a study config, or the section itself, as given."""
     if cfg is None:
         sec: Mapping[str, Any] = {}
     elif "mooring" in cfg:
@@ -338,12 +351,12 @@ def _section(cfg: Mapping[str, Any] | None) -> dict[str, Any]:
         sec = {}  # a study configuration without a mooring section
     else:
         sec = cfg
-    unknown = sorted(set(sec) - set(DEFAULTS))
-    if unknown:
-        raise ValueError(f"config section 'mooring': unknown key(s) {unknown}")
-    out = dict(DEFAULTS)
-    out.update(sec)
-    return out
+    return sec
+
+
+def _section(cfg: Mapping[str, Any] | None) -> dict[str, Any]:
+    """The ``mooring`` section (of a study config, or the section itself) over the schema defaults."""
+    return fill_section("mooring", _raw_section(cfg))
 
 
 def line_angles(bearings_deg: Sequence[float]) -> np.ndarray:
@@ -409,23 +422,4 @@ def mooring_settings(cfg: Mapping[str, Any] | None = None) -> MooringSettings:
     ValueError
         If a value is out of range, naming the key and value.
     """
-    s = _section(cfg)
-    if s["model"] not in ("quasistatic", "dynamic"):
-        raise ValueError(f"config key 'mooring.model' = {s['model']!r} must be 'quasistatic' or 'dynamic'")
-    if s["integrator"] not in ("bdf2", "ros2"):
-        raise ValueError(f"config key 'mooring.integrator' = {s['integrator']!r} must be 'bdf2' or 'ros2'")
-    if int(s["n_segments"]) < 2:
-        raise ValueError(f"config key 'mooring.n_segments' = {s['n_segments']!r} must be at least 2")
-    fields = MooringSettings.__dataclass_fields__
-    kw = {k: s[k] for k in fields}
-    for k in fields:
-        if k in ("model", "n_segments", "integrator"):
-            continue
-        kw[k] = float(kw[k])
-        if kw[k] < 0 or not np.isfinite(kw[k]):
-            raise ValueError(f"config key 'mooring.{k}' = {s[k]!r} must be a finite non-negative number")
-    for k in ("water_density", "gravity", "max_time_step", "table_resolution", "friction_slip_velocity"):
-        if kw[k] <= 0:
-            raise ValueError(f"config key 'mooring.{k}' = {s[k]!r} must be positive")
-    kw["n_segments"] = int(s["n_segments"])
-    return MooringSettings(**kw)
+    return MooringSettings.from_config(_raw_section(cfg))

@@ -231,13 +231,14 @@ def offsets_tensions(dists: Mapping[str, Mapping[str, xr.DataArray]]) -> Figure:
 
 def recommendation_table(table: pd.DataFrame, rec: Mapping[str, Any]) -> Figure:
     """Per system: mass, shortest fatigue life and largest utilisation per curve, verdict."""
+    curves = rec["curves"]  # always written by the lifecycle stage (moorlife.io.lifecycle)
     rows = []
     for ms, g in table.groupby("mooring_system", sort=False):
         row = [ms, f"{g['mass_kg_per_m'].iloc[0]:.1f}"]
         for c in ("sn", "tn"):
             gc = g[g.curve == c]
             row += [f"{gc['fatigue_life_years'].min():.1f}", f"{gc['utilisation'].max():.2f}"] if len(gc) else ["-", "-"]
-        row.append("pass" if g[g.curve.isin(rec.get("curves", ["sn", "tn"]))]["passes"].all() else "fail")
+        row.append("pass" if g[g.curve.isin(curves)]["passes"].all() else "fail")
         rows.append(row)
     fig = Figure(figsize=(9, 0.45 * len(rows) + 1.6), layout="constrained")
     ax = fig.subplots()
