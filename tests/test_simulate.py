@@ -466,6 +466,8 @@ def test_compiled_record_loop_equals_the_per_step_loop(kind, monkeypatch):
     """The one-call compiled loop (no per-step dispatch) gives the per-step loop's record bit for bit."""
     model = moored("MS1", kind)
     records, used = [], []
+    from moorlife.simulate import batch, integration
+
     real_integrate, real_compiled = sim.integrate, sim._run_compiled
 
     def spy_integrate(*a, **k):
@@ -476,12 +478,12 @@ def test_compiled_record_loop_equals_the_per_step_loop(kind, monkeypatch):
         used.append(real_compiled(*a, **k))
         return used[-1]
 
-    monkeypatch.setattr(sim, "integrate", spy_integrate)
-    monkeypatch.setattr(sim, "_run_compiled", spy_compiled)
+    monkeypatch.setattr(batch, "integrate", spy_integrate)
+    monkeypatch.setattr(integration, "_run_compiled", spy_compiled)
     kw = dict(case_ids=np.array([3, 4]), mooring_system="MS1", seed=7, model_inputs=model,
               sim_cfg={**SIM, "duration": 150.0, "transient": 30.0}, fatigue_cfg={}, stats_cfg=STATS)
     fast = sim.simulate_batch(sea(2), **kw)
-    monkeypatch.setattr(sim, "_run_compiled", lambda *a, **k: False)
+    monkeypatch.setattr(integration, "_run_compiled", lambda *a, **k: False)
     slow = sim.simulate_batch(sea(2), **kw)
     assert used == [True] and len(records) == 2
     for field in ("motion", "accel", "tension"):
