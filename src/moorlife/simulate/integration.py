@@ -9,7 +9,21 @@ from typing import Any
 import numpy as np
 
 from moorlife.simulate.forcing import Forcing
-from moorlife.simulate.kernel import _advance, _fairlead_motion, _predict_fairleads, _run_dynamic, _run_quasistatic
+from moorlife.simulate.kernel import (
+    Body,
+    Excitation,
+    MooringLink,
+    Radiation,
+    Recorder,
+    Rotor,
+    State,
+    Strips,
+    _advance,
+    _fairlead_motion,
+    _predict_fairleads,
+    _run_dynamic,
+    _run_quasistatic,
+)
 from moorlife.simulate.linear import _free_dofs, _inverse_mass
 from moorlife.simulate.model import ModelInputs
 
@@ -49,17 +63,17 @@ def _make_mooring(model: ModelInputs, batch: int):
     return moor.make_mooring(model.mooring_kind, props, layout, cfg, batch=batch)
 
 
-def _run_compiled(moor: Any, mstate: Any, n: int, j0: int, dt: float, fair: np.ndarray, r_f: np.ndarray,
-                  v_f: np.ndarray, loop: tuple, platform: tuple) -> bool:
-    """Run the record in one compiled loop if ``moor`` is a known line model; ``False`` otherwise."""
+def _run_compiled(moor: Any, mstate: Any, n: int, dt: float, records: tuple) -> bool:
+    """Run the record in one compiled loop if ``moor`` is a known line model; ``False`` otherwise.
+
+    ``records`` is ``(state, body, rad, strips, rotor, wave, rec)`` (:mod:`moorlife.simulate.kernel`);
+    the lines are advanced by their model's compiled step (the interface of :mod:`moorlife.mooring`).
+    """
     from moorlife import mooring as moor_pkg
 
     if type(moor) is moor_pkg.DynamicMooring:
-        nsub = moor.substeps(dt)
         try:
-            _run_dynamic(n, j0, float(dt), fair, r_f, v_f, mstate.r, mstate.v, mstate.r_prev, mstate.v_prev,
-                         mstate.step_prev, nsub, moor._scheme, moor.model.params, moor._w, mstate.forces,
-                         mstate.tension, *loop, *platform)
+            _run_dynamic(n, float(dt), moor.substeps(dt), *records, mstate, moor.kernel)
         except FloatingPointError:
             raise FloatingPointError(
                 f"dynamic mooring ({moor.props.name}): non-finite fairlead tension; line state diverged "
@@ -67,9 +81,7 @@ def _run_compiled(moor: Any, mstate: Any, n: int, j0: int, dt: float, fair: np.n
             ) from None
         return True
     if type(moor) is moor_pkg.QuasiStaticMooring:
-        forces, ten = mstate
-        _run_quasistatic(n, j0, float(dt), fair, r_f, v_f, moor.anchors, moor.table.args(), forces, ten,
-                         *loop, *platform)
+        _run_quasistatic(n, float(dt), *records, mstate, moor.anchors, moor.table)
         return True
     return False
 
@@ -205,32 +217,38 @@ def integrate(
     motion = np.empty((nb, 6, nt))
     accel = np.empty((nb, 3, nt))
     tension = np.empty((nb, 3, nt))
-    hub = model.hub
     # the verification-only linear mooring is exact: folded into the stiffness
     stiff = model.stiffness + (model.mooring_stiffness if linear else 0.0)
-    args = (forcing.force, forcing.wind, forcing.wind_dir, kin, forcing.kin_every, minv, stiff,
-            model.damping, ra[0], ra[1], ra[2], model.rad_b, model.rad_c, np.ascontiguousarray(model.strip_pos.T),
-            np.ascontiguousarray(model.strip_axis.T), model.strip_cdn, model.strip_cda, hub, model.thrust_speed, model.thrust_force,
-            model.filt_a, model.filt_b, model.filt_c, model.filt_d)
     coupled = not linear
     ker, stride, kpi, kpj = _kernel_at(model, dt)
     hist = np.zeros((nb, stride, 6, 2 * ker.shape[1]))
-    f_new = np.zeros((nb, 3, 3))
-    ten = np.zeros((nb, 3))
     static = np.asarray(model.static_load, dtype=float)
+    state = State(displacement=q, velocity=v, radiation=xr, filter=zf, mooring_force=f_prev, held_load=fmoor6,
+                  acceleration=acc, history=hist, fairlead_position=r_f, fairlead_velocity=v_f)
+    body = Body(inverse_mass=minv, stiffness=stiff, damping=model.damping, trim_load=static, hub=model.hub,
+                fairleads=fair)
+    rad = Radiation(ss_row_start=ra[0], ss_column=ra[1], ss_value=ra[2], ss_input=model.rad_b, ss_output=model.rad_c,
+                    kernel=ker, kernel_stride=stride, kernel_force_dof=kpi, kernel_velocity_dof=kpj)
+    strips = Strips(position=np.ascontiguousarray(model.strip_pos.T), axis=np.ascontiguousarray(model.strip_axis.T),
+                    drag_normal=model.strip_cdn, drag_axial=model.strip_cda)
+    rotor = Rotor(wind_speed=model.thrust_speed, thrust=model.thrust_force, filter_a=model.filt_a,
+                  filter_b=model.filt_b, filter_c=model.filt_c, filter_d=model.filt_d)
+    wave = Excitation(force=forcing.force, wind=forcing.wind, wind_dir=forcing.wind_dir, kinematics=kin,
+                      kin_every=forcing.kin_every)
+    rec = Recorder(start=j0, motion=motion, accel=accel, tension=tension)
+    records = (state, body, rad, strips, rotor, wave, rec)
     if coupled and j0 == 0:
         tension[:, :, 0] = moor.tension(mstate)
-    loop = (q, v, xr, zf, f_prev, static, motion, accel, tension, fmoor6, acc, hist, stride, ker, kpi, kpj)
-    if coupled and _run_compiled(moor, mstate, n, j0, dt, fair, r_f, v_f, loop, args):
+    if coupled and _run_compiled(moor, mstate, n, dt, records):
         return Record(dt=dt, motion=motion, accel=accel, tension=tension)
+    link = MooringLink(coupled=coupled, forces=np.zeros((nb, 3, 3)), tension=np.zeros((nb, 3)))
     for j in range(n):
         if coupled:
             # predictor: advance the lines to the fairlead positions extrapolated to t + dt
             _predict_fairleads(q, v, fair, dt, r_f, v_f)
             f_new, mstate = moor.step(mstate, r_f, v_f, dt)  # views, used before the next step
-            ten = moor.tension(mstate)
-        _advance(j, j - j0, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, motion, accel, tension,
-                 fmoor6, acc, hist, stride, ker, kpi, kpj, *args)
+            link = MooringLink(coupled=True, forces=f_new, tension=moor.tension(mstate))
+        _advance(j, dt, state, body, rad, strips, rotor, wave, link, rec)
     if linear:
         tension[:] = np.nan
     return Record(dt=dt, motion=motion, accel=accel, tension=tension)

@@ -1,16 +1,159 @@
-"""The Numba kernels of the coupled simulator: rigid-body kinematics, loads, RK4 step, record loops."""
+"""The Numba kernels of the coupled simulator: rigid-body kinematics, loads, RK4 step, record loops.
+
+The kernels take their inputs as records (``typing.NamedTuple`` of arrays and scalars, which
+Numba compiles as heterogeneous tuples): :class:`State` (what the step advances),
+:class:`Body`, :class:`Radiation`, :class:`Strips`, :class:`Rotor` (the platform model),
+:class:`Excitation` (the forcing on the grid), :class:`MooringLink` (the mooring forces of the
+step) and :class:`Recorder` (where the kept record goes). The mooring lines are advanced by the
+compiled step of their model (:mod:`moorlife.mooring`).
+"""
 
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba
 import numpy as np
 
-from moorlife.mooring.dynamic import _step_batch as _dyn_step_batch
-from moorlife.mooring.quasistatic import _fairlead_forces as _qs_fairlead_forces
+from moorlife.mooring.dynamic import step_lines as _step_dynamic_lines
+from moorlife.mooring.quasistatic import step_lines as _step_quasistatic_lines
 
-__all__ = ["rotation_matrix"]
+__all__ = ["rotation_matrix", "State", "Body", "Radiation", "Strips", "Rotor", "Excitation", "MooringLink", "Recorder"]
+
+
+class State(NamedTuple):
+    """What a step advances, for a batch of ``B`` cases (arrays updated in place)."""
+
+    #: (B, 6) platform displacement about the origin, m and rad
+    displacement: np.ndarray
+    #: (B, 6) platform velocity
+    velocity: np.ndarray
+    #: (B, nr) radiation states (state-space memory; empty with a kernel)
+    radiation: np.ndarray
+    #: (B, nf) states of the pitch-band filter of the rotor's relative wind
+    filter: np.ndarray
+    #: (B, 3, 3) mooring forces at the start of the step (then their mean with the end's)
+    mooring_force: np.ndarray
+    #: (B, 6) load held constant over the step (scratch: mooring, trim, convolution)
+    held_load: np.ndarray
+    #: (B, 6) accelerations at the start of the step (scratch)
+    acceleration: np.ndarray
+    #: (B, stride, 6, 2 nlag) velocity history of the radiation convolution (:func:`_convolve`)
+    history: np.ndarray
+    #: (B, 3, 3) fairlead positions predicted for the end of the step (scratch)
+    fairlead_position: np.ndarray
+    #: (B, 3, 3) fairlead velocities (scratch)
+    fairlead_velocity: np.ndarray
+
+
+class Body(NamedTuple):
+    """The rigid platform."""
+
+    #: (6, 6) inverse of mass plus added mass (zero rows and columns for locked DOFs)
+    inverse_mass: np.ndarray
+    #: (6, 6) hydrostatic stiffness with gravity (plus the linear verification mooring)
+    stiffness: np.ndarray
+    #: (6, 6) extra linear damping
+    damping: np.ndarray
+    #: (6,) constant trim load
+    trim_load: np.ndarray
+    #: (3,) hub position, body frame, m
+    hub: np.ndarray
+    #: (3, 3) fairlead positions, body frame (line, xyz), m
+    fairleads: np.ndarray
+
+
+class Radiation(NamedTuple):
+    """The radiation memory: state space (CSR matrix) or retardation kernel (one is empty)."""
+
+    #: (nr + 1,) row pointers of the state matrix A (compressed sparse rows)
+    ss_row_start: np.ndarray
+    #: column of each non-zero of A
+    ss_column: np.ndarray
+    #: value of each non-zero of A
+    ss_value: np.ndarray
+    #: (nr, 6) input matrix B (velocity to state derivative)
+    ss_input: np.ndarray
+    #: (6, nr) output matrix C (state to force)
+    ss_output: np.ndarray
+    #: (npairs, nlag) kernel with trapezoid weights, oldest lag first (:func:`_convolve`)
+    kernel: np.ndarray
+    #: the kernel's step in integration steps
+    kernel_stride: int
+    #: (npairs,) DOF of the force of each kernel pair
+    kernel_force_dof: np.ndarray
+    #: (npairs,) DOF of the velocity of each kernel pair
+    kernel_velocity_dof: np.ndarray
+
+
+class Strips(NamedTuple):
+    """Morison drag strips, strips along the last axis."""
+
+    #: (3, ns) centres, body frame, m
+    position: np.ndarray
+    #: (3, ns) unit axes
+    axis: np.ndarray
+    #: (ns,) normal drag factor 0.5 rho Cd D L, kg/m
+    drag_normal: np.ndarray
+    #: (ns,) axial drag factor, kg/m
+    drag_axial: np.ndarray
+
+
+class Rotor(NamedTuple):
+    """Rotor thrust: the thrust curve and the pitch-band filter (SISO state space) on the relative wind."""
+
+    #: (nv,) relative wind speeds of the thrust table, m/s
+    wind_speed: np.ndarray
+    #: (nv,) thrust, N
+    thrust: np.ndarray
+    #: (nf, nf) filter state matrix
+    filter_a: np.ndarray
+    #: (nf, 1) filter input matrix
+    filter_b: np.ndarray
+    #: (1, nf) filter output matrix
+    filter_c: np.ndarray
+    #: (1, 1) filter feed-through
+    filter_d: np.ndarray
+
+
+class Excitation(NamedTuple):
+    """The external forcing of the batch on the integration grid (see ``simulate.Forcing``)."""
+
+    #: (B, n + 1, 6) wave force, N and N m
+    force: np.ndarray
+    #: (B, n + 1) hub wind speed, m/s
+    wind: np.ndarray
+    #: (B, 2) unit vector of the wind's direction of travel
+    wind_dir: np.ndarray
+    #: (B, nk, 3, ns) wave particle velocity at the strips
+    kinematics: np.ndarray
+    #: sampling of the kinematics, in steps
+    kin_every: int
+
+
+class MooringLink(NamedTuple):
+    """The mooring forces of a step, as the line model left them."""
+
+    #: False for the linear verification mooring (folded into the stiffness)
+    coupled: bool
+    #: (B, 3, 3) fairlead forces on the platform at the end of the step, N
+    forces: np.ndarray
+    #: (B, 3) fairlead tensions at the end of the step, N
+    tension: np.ndarray
+
+
+class Recorder(NamedTuple):
+    """Where the kept record goes: step ``j`` is kept as sample ``j - start``."""
+
+    #: first kept step (the transient is discarded)
+    start: int
+    #: (B, 6, nt) displacement
+    motion: np.ndarray
+    #: (B, 3, nt) hub acceleration
+    accel: np.ndarray
+    #: (B, 3, nt) fairlead tension
+    tension: np.ndarray
 
 
 def rotation_matrix(rot: np.ndarray) -> np.ndarray:
@@ -84,11 +227,21 @@ def _moor_generalised(q, fmoor, fair, out):  # pragma: no cover - numba
 
 
 @numba.njit(cache=True)
-def _rhs(b, t_frac, j, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
-         minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc,
-         spos, saxis, scdn, scda, hub, tv, tf, fa, fb, fc, fd,
-         dq, dv, dxr, dzf, F):  # pragma: no cover - numba
-    """Time derivative of one case's state at ``t = (j + t_frac) dt`` (``F (6,)`` scratch)."""
+def _rhs(b, t_frac, j, y, dy, held, F, body, rad, strips, rotor, wave):  # pragma: no cover - numba
+    """Time derivative ``dy`` of case ``b``'s state ``y = (q, v, xr, zf)`` at ``t = (j + t_frac) dt``.
+
+    ``held (B, 6)`` is the load held over the step; ``F (6,)`` is scratch.
+    """
+    nr = rad.ss_input.shape[0]
+    ny = 12 + nr + rotor.filter_a.shape[0]
+    q, v, xr, zf = y[0:6], y[6:12], y[12:12 + nr], y[12 + nr:ny]
+    dq, dv, dxr, dzf = dy[0:6], dy[6:12], dy[12:12 + nr], dy[12 + nr:ny]
+    fmoor6, force, wind, wdir, kin, kin_every = held, wave.force, wave.wind, wave.wind_dir, wave.kinematics, wave.kin_every
+    minv, K, D, hub = body.inverse_mass, body.stiffness, body.damping, body.hub
+    ra_ptr, ra_idx, ra_val, rb, rc = rad.ss_row_start, rad.ss_column, rad.ss_value, rad.ss_input, rad.ss_output
+    spos, saxis, scdn, scda = strips.position, strips.axis, strips.drag_normal, strips.drag_axial
+    tv, tf = rotor.wind_speed, rotor.thrust
+    fa, fb, fc, fd = rotor.filter_a, rotor.filter_b, rotor.filter_c, rotor.filter_d
     # external wave force, linear in time between samples j and j+1
     for d in range(6):
         F[d] = (1.0 - t_frac) * force[b, j, d] + t_frac * force[b, j + 1, d] + fmoor6[b, d]
@@ -99,7 +252,6 @@ def _rhs(b, t_frac, j, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
             acc += K[d, e] * q[e] + D[d, e] * v[e]
         F[d] -= acc
     # radiation memory
-    nr = xr.shape[0]
     for d in range(6):
         acc = 0.0
         for r in range(nr):
@@ -181,13 +333,13 @@ def _rhs(b, t_frac, j, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
 
 
 @numba.njit(cache=True)
-def _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
-              minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc,
-              spos, saxis, scdn, scda, hub, tv, tf, fa, fb, fc, fd, acc_out):  # pragma: no cover
+def _rk4_step(j, dt, state, body, rad, strips, rotor, wave):  # pragma: no cover - numba
     """Advance every case of the batch from step ``j`` to ``j + 1`` (classical RK4, in place).
 
-    ``acc_out (B, 6)`` receives the accelerations at the start of the step.
+    ``state.acceleration (B, 6)`` receives the accelerations at the start of the step.
     """
+    q, v, xr, zf = state.displacement, state.velocity, state.radiation, state.filter
+    fmoor6, acc_out = state.held_load, state.acceleration
     nb = q.shape[0]
     nr = xr.shape[1]
     nf = zf.shape[1]
@@ -213,10 +365,7 @@ def _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
                 c, frac = 0.5, 0.5
             for i in range(ny):
                 ys[i] = y0[i] + (c * dt * k[stage - 1, i] if stage > 0 else 0.0)
-            _rhs(b, frac, j, ys[0:6], ys[6:12], ys[12:12 + nr], ys[12 + nr:ny], fmoor6, force, wind, wdir,
-                 kin, kin_every, minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc, spos, saxis, scdn, scda, hub,
-                 tv, tf, fa, fb, fc, fd,
-                 k[stage, 0:6], k[stage, 6:12], k[stage, 12:12 + nr], k[stage, 12 + nr:ny], F)
+            _rhs(b, frac, j, ys, k[stage], fmoor6, F, body, rad, strips, rotor, wave)
         for d in range(6):
             acc_out[b, d] = k[0, 6 + d]
         for i in range(ny):
@@ -231,18 +380,20 @@ def _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every,
 
 
 @numba.njit(cache=True)
-def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, motion, accel, tension, fmoor6, acc,
-             hist, stride, ker, kpi, kpj,
-             force, wind, wdir, kin, kin_every, minv, K, D, ra_ptr, ra_idx, ra_val, rb, rc,
-             spos, saxis, scdn, scda, hub, tv, tf, fa, fb, fc, fd):  # pragma: no cover - numba
-    """One coupled step ``j -> j + 1`` of the batch, with recording (kept sample ``i``).
+def _advance(j, dt, state, body, rad, strips, rotor, wave, moor, rec):  # pragma: no cover - numba
+    """One coupled step ``j -> j + 1`` of the batch, with recording (kept sample ``i = j - rec.start``).
 
-    The load held constant over the step (``fmoor6``) is the mooring force, the trim load and,
-    with a kernel, the radiation convolution. The platform is driven by the mean of the
-    mooring forces at the start (``f_prev``) and at the predicted end (``f_new``); ``f_prev``
-    then takes ``f_new``. ``ten`` is the line tension at ``t_{j+1}`` (kept as sample ``i + 1``).
-    ``hist (B, stride, 6, 2 nlag)`` is the velocity history of the convolution (:func:`_convolve`).
+    The load held constant over the step (``state.held_load``) is the mooring force, the trim
+    load and, with a kernel, the radiation convolution. The platform is driven by the mean of the
+    mooring forces at the start (``state.mooring_force``) and at the predicted end
+    (``moor.forces``); ``state.mooring_force`` then takes ``moor.forces``. ``moor.tension`` is the
+    line tension at ``t_{j+1}`` (kept as sample ``i + 1``).
     """
+    i = j - rec.start
+    q, v, f_prev, fmoor6, acc = state.displacement, state.velocity, state.mooring_force, state.held_load, state.acceleration
+    coupled, f_new, ten = moor.coupled, moor.forces, moor.tension
+    static, fair, hub = body.trim_load, body.fairleads, body.hub
+    motion, accel, tension = rec.motion, rec.accel, rec.tension
     nb = q.shape[0]
     nt = motion.shape[2]
     for b in range(nb):
@@ -265,14 +416,13 @@ def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, 
     for b in range(nb):
         for d in range(6):
             fmoor6[b, d] += static[d]
-    if ker.shape[1] > 0:
-        _convolve(j, stride, v, hist, ker, kpi, kpj, fmoor6)
+    if rad.kernel.shape[1] > 0:
+        _convolve(j, v, state.history, rad, fmoor6)
     if i >= 0:
         for b in range(nb):
             for d in range(6):
                 motion[b, d, i] = q[b, d]
-    _rk4_step(j, dt, q, v, xr, zf, fmoor6, force, wind, wdir, kin, kin_every, minv, K, D, ra_ptr, ra_idx,
-              ra_val, rb, rc, spos, saxis, scdn, scda, hub, tv, tf, fa, fb, fc, fd, acc)
+    _rk4_step(j, dt, state, body, rad, strips, rotor, wave)
     if i >= 0:
         hx, hy, hz = hub[0], hub[1], hub[2]
         for b in range(nb):
@@ -282,16 +432,18 @@ def _advance(j, i, dt, q, v, xr, zf, f_prev, f_new, coupled, static, fair, ten, 
 
 
 @numba.njit(cache=True)
-def _convolve(j, stride, v, hist, ker, kpi, kpj, out):  # pragma: no cover - numba
+def _convolve(j, v, hist, rad, out):  # pragma: no cover - numba
     """Subtract the radiation convolution ``sum_k K[k] v(t_j - k stride dt)`` from ``out (B, 6)``.
 
-    ``ker (npairs, nlag)`` holds the kernel with the trapezoid weights and its step ``stride dt``
+    ``rad.kernel (npairs, nlag)`` (``ker``) holds the kernel with the trapezoid weights and its step ``stride dt``
     folded in, oldest lag first (``ker[p, nlag - 1 - k] = w_k K_p(k stride dt)``).
     ``hist (B, stride, 6, 2 nlag)`` is the velocity history of every step, split by the
     step's residue modulo ``stride`` and stored twice (slot and slot + nlag) so that the
     ``nlag`` samples of a convolution are one contiguous window: each pair is a unit-stride
-    dot product, which the compiler vectorises. ``v`` is stored first.
+    dot product, which the compiler vectorises. ``v`` is stored first. Pair ``p`` is the force
+    in DOF ``kpi[p]`` from the velocity in DOF ``kpj[p]``; ``stride`` is ``rad.kernel_stride``.
     """
+    ker, stride, kpi, kpj = rad.kernel, rad.kernel_stride, rad.kernel_force_dof, rad.kernel_velocity_dof
     npair, nlag = ker.shape
     c = j % stride
     slot = (j // stride) % nlag
@@ -320,29 +472,31 @@ def _predict_fairleads(q, v, fair, dt, r_out, v_out):  # pragma: no cover - numb
 
 
 @numba.njit(cache=True)
-def _run_dynamic(n, j0, dt, fair, r_f, v_f, mr, mv, mrp, mvp, mhist, nsub, scheme, mparams, mwork, forces, ten,
-                 q, v, xr, zf, f_prev, static, motion, accel, tension, fmoor6, acc, hist, stride, ker, kpi, kpj,
-                 *platform):  # pragma: no cover - numba
+def _run_dynamic(n, dt, nsub, state, body, rad, strips, rotor, wave, rec, lines, kernel):  # pragma: no cover
     """The whole record with dynamic lines, in one compiled loop (no per-step dispatch).
 
-    Each step is exactly the Python loop of :func:`integrate`: predict the fairleads, advance
-    the lines (``moorlife.mooring.dynamic._step_batch``, whose ``forces`` and ``ten`` are the
-    state's arrays), then :func:`_advance` the platform.
+    Each step is exactly the Python loop of ``integrate``: predict the fairleads, advance the
+    lines (the compiled step ``moorlife.mooring.dynamic.step_lines`` of the state ``lines``
+    with the model's ``kernel``, ``nsub`` substeps), then :func:`_advance` the platform.
     """
+    moor = MooringLink(True, lines.forces, lines.tension)
     for j in range(n):
-        _predict_fairleads(q, v, fair, dt, r_f, v_f)
-        _dyn_step_batch(mr, mv, mrp, mvp, mhist, r_f, v_f, dt, nsub, scheme, mparams, mwork, forces, ten)
-        _advance(j, j - j0, dt, q, v, xr, zf, f_prev, forces, True, static, fair, ten, motion, accel, tension,
-                 fmoor6, acc, hist, stride, ker, kpi, kpj, *platform)
+        _predict_fairleads(state.displacement, state.velocity, body.fairleads, dt, state.fairlead_position,
+                           state.fairlead_velocity)
+        _step_dynamic_lines(lines, state.fairlead_position, state.fairlead_velocity, dt, nsub, kernel)
+        _advance(j, dt, state, body, rad, strips, rotor, wave, moor, rec)
 
 
 @numba.njit(cache=True)
-def _run_quasistatic(n, j0, dt, fair, r_f, v_f, anchors, table, forces, ten,
-                     q, v, xr, zf, f_prev, static, motion, accel, tension, fmoor6, acc, hist, stride, ker, kpi, kpj,
-                     *platform):  # pragma: no cover - numba
-    """The whole record with quasi-static lines, in one compiled loop (see :func:`_run_dynamic`)."""
+def _run_quasistatic(n, dt, state, body, rad, strips, rotor, wave, rec, lines, anchors, table):  # pragma: no cover
+    """The whole record with quasi-static lines, in one compiled loop (see :func:`_run_dynamic`).
+
+    The lines are ``moorlife.mooring.quasistatic.step_lines`` of the state ``lines`` on the
+    force table ``table``.
+    """
+    moor = MooringLink(True, lines.forces, lines.tension)
     for j in range(n):
-        _predict_fairleads(q, v, fair, dt, r_f, v_f)
-        _qs_fairlead_forces(r_f, anchors, *table, forces, ten)
-        _advance(j, j - j0, dt, q, v, xr, zf, f_prev, forces, True, static, fair, ten, motion, accel, tension,
-                 fmoor6, acc, hist, stride, ker, kpi, kpj, *platform)
+        _predict_fairleads(state.displacement, state.velocity, body.fairleads, dt, state.fairlead_position,
+                           state.fairlead_velocity)
+        _step_quasistatic_lines(lines, state.fairlead_position, anchors, table)
+        _advance(j, dt, state, body, rad, strips, rotor, wave, moor, rec)
