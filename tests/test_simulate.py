@@ -413,6 +413,12 @@ def test_keep_timeseries_returns_the_records(ms3):
     np.testing.assert_allclose(out["ts_tension"].max(axis=-1), out["tension_max"], rtol=1e-6)
     assert "damage_sn" not in out  # fatigue_cfg=None skips the damage
     assert sim.output_attrs("ts_pitch")["units"] == "rad"
+    # one attribute registry (moorlife.names) covers every output, with units
+    assert set(out) <= set(sim.names.SIM_OUTPUT_ATTRS)
+    assert all(sim.output_attrs(name) == sim.names.SIM_OUTPUT_ATTRS[name] and "units" in sim.output_attrs(name)
+               for name in out)
+    with pytest.raises(KeyError):
+        sim.output_attrs("ts_unknown")
 
 
 @pytest.mark.parametrize("kin_every", [1, 2, 3])

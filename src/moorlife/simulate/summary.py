@@ -12,48 +12,16 @@ from moorlife.simulate.integration import Record
 
 __all__ = ["EXTRA_SCALAR_VARS", "EXTRA_LINE_VARS", "EXTRA_ATTRS", "TIMESERIES_VARS", "output_attrs", "summarise"]
 
-#: Extra scalar outputs per case (beyond ``names.SIM_SCALAR_VARS``).
-EXTRA_SCALAR_VARS: tuple[str, ...] = (
-    "surge_mean",
-    "sway_mean",
-    "heave_mean",
-    "pitch_mean",
-    "surge_std",
-    "pitch_mpm",
-    "offset_max",
-    "gev_corr_pitch_mpm",
-)
-#: Extra per-line outputs per case.
-EXTRA_LINE_VARS: tuple[str, ...] = ("tension_mean", "tension_std", "tension_max")
-EXTRA_ATTRS: dict[str, dict[str, str]] = {
-    "surge_mean": {"units": "m", "long_name": "mean surge offset"},
-    "sway_mean": {"units": "m", "long_name": "mean sway offset"},
-    "heave_mean": {"units": "m", "long_name": "mean heave offset"},
-    "pitch_mean": {"units": "deg", "long_name": "mean pitch angle"},
-    "surge_std": {"units": "m", "long_name": "standard deviation of surge"},
-    "pitch_mpm": {"units": "deg", "long_name": "most probable maximum of |pitch|"},
-    "offset_max": {"units": "m", "long_name": "largest horizontal offset in the record"},
-    "tension_mean": {"units": "N", "long_name": "mean fairlead tension"},
-    "tension_std": {"units": "N", "long_name": "standard deviation of fairlead tension"},
-    "tension_max": {"units": "N", "long_name": "largest fairlead tension in the record"},
-    "gev_corr_pitch_mpm": {"units": "1", "long_name": "GEV fit correlation (pitch_mpm)"},
-}
-#: Time series returned when ``simulation.keep_timeseries`` is true: (B, nt) or (B, 3, nt).
-TIMESERIES_VARS: tuple[str, ...] = (
-    "ts_surge", "ts_sway", "ts_heave", "ts_roll", "ts_pitch", "ts_yaw", "ts_accel", "ts_tension",
-)
+#: The output names and attributes live in the registry :mod:`moorlife.names`; these are its entries.
+EXTRA_SCALAR_VARS: tuple[str, ...] = names.SIM_EXTRA_SCALAR_VARS
+EXTRA_LINE_VARS: tuple[str, ...] = names.SIM_EXTRA_LINE_VARS
+EXTRA_ATTRS: dict[str, dict[str, str]] = names.SIM_EXTRA_ATTRS
+TIMESERIES_VARS: tuple[str, ...] = names.SIM_TIMESERIES_VARS
 
 
 def output_attrs(name: str) -> dict[str, str]:
-    """Attributes of any output of :func:`simulate_batch` (contract or extra)."""
-    if name in names.SIM_ATTRS:
-        return dict(names.SIM_ATTRS[name])
-    if name in EXTRA_ATTRS:
-        return dict(EXTRA_ATTRS[name])
-    if name.startswith("ts_"):
-        units = {"ts_tension": "N", "ts_accel": "m s-2"}.get(name, "rad" if name[3:] in ("roll", "pitch", "yaw") else "m")
-        return {"units": units, "long_name": f"time series of {name[3:]} after the transient"}
-    raise KeyError(f"{name!r} is not an output of simulate_batch")
+    """Attributes of any output of :func:`simulate_batch` (contract or extra): :func:`moorlife.names.output_attrs`."""
+    return names.output_attrs(name)
 
 
 def summarise(
