@@ -413,6 +413,12 @@ def test_keep_timeseries_returns_the_records(ms3):
     np.testing.assert_allclose(out["ts_tension"].max(axis=-1), out["tension_max"], rtol=1e-6)
     assert "damage_sn" not in out  # fatigue_cfg=None skips the damage
     assert sim.output_attrs("ts_pitch")["units"] == "rad"
+    # one attribute registry (moorlife.names) covers every output, with units
+    assert set(out) <= set(sim.names.SIM_OUTPUT_ATTRS)
+    assert all(sim.output_attrs(name) == sim.names.SIM_OUTPUT_ATTRS[name] and "units" in sim.output_attrs(name)
+               for name in out)
+    with pytest.raises(KeyError):
+        sim.output_attrs("ts_unknown")
 
 
 @pytest.mark.parametrize("kin_every", [1, 2, 3])
@@ -466,6 +472,8 @@ def test_compiled_record_loop_equals_the_per_step_loop(kind, monkeypatch):
     """The one-call compiled loop (no per-step dispatch) gives the per-step loop's record bit for bit."""
     model = moored("MS1", kind)
     records, used = [], []
+    from moorlife.simulate import batch, integration
+
     real_integrate, real_compiled = sim.integrate, sim._run_compiled
 
     def spy_integrate(*a, **k):
@@ -476,12 +484,12 @@ def test_compiled_record_loop_equals_the_per_step_loop(kind, monkeypatch):
         used.append(real_compiled(*a, **k))
         return used[-1]
 
-    monkeypatch.setattr(sim, "integrate", spy_integrate)
-    monkeypatch.setattr(sim, "_run_compiled", spy_compiled)
+    monkeypatch.setattr(batch, "integrate", spy_integrate)
+    monkeypatch.setattr(integration, "_run_compiled", spy_compiled)
     kw = dict(case_ids=np.array([3, 4]), mooring_system="MS1", seed=7, model_inputs=model,
               sim_cfg={**SIM, "duration": 150.0, "transient": 30.0}, fatigue_cfg={}, stats_cfg=STATS)
     fast = sim.simulate_batch(sea(2), **kw)
-    monkeypatch.setattr(sim, "_run_compiled", lambda *a, **k: False)
+    monkeypatch.setattr(integration, "_run_compiled", lambda *a, **k: False)
     slow = sim.simulate_batch(sea(2), **kw)
     assert used == [True] and len(records) == 2
     for field in ("motion", "accel", "tension"):

@@ -1,4 +1,4 @@
-"""Dimension names, variable names, units and attributes, defined once.
+"""Dimension names, variable names, units and attributes, defined once (the attribute registry).
 
 Every store in ``results/`` uses these names (see the output contract in the README).
 Directions are degrees, nautical convention, "coming from", clockwise from north.
@@ -19,7 +19,14 @@ __all__ = [
     "SIM_SCALAR_VARS",
     "SIM_ATTRS",
     "GEV_VARS",
+    "SIM_EXTRA_SCALAR_VARS",
+    "SIM_EXTRA_LINE_VARS",
+    "SIM_TIMESERIES_VARS",
+    "SIM_EXTRA_ATTRS",
+    "SIM_TIMESERIES_ATTRS",
+    "SIM_OUTPUT_ATTRS",
     "attrs_for",
+    "output_attrs",
 ]
 
 # dimensions
@@ -109,6 +116,59 @@ for _name in GEV_VARS:
         "units": "1",
         "long_name": f"correlation of empirical and GEV-fitted distribution of maxima ({_name})",
     }
+
+
+#: Extra scalar outputs of one simulated sea state, beyond the contract's ``SIM_SCALAR_VARS``.
+SIM_EXTRA_SCALAR_VARS: tuple[str, ...] = (
+    "surge_mean",
+    "sway_mean",
+    "heave_mean",
+    "pitch_mean",
+    "surge_std",
+    "pitch_mpm",
+    "offset_max",
+    "gev_corr_pitch_mpm",
+)
+#: Extra per-line outputs of one simulated sea state.
+SIM_EXTRA_LINE_VARS: tuple[str, ...] = ("tension_mean", "tension_std", "tension_max")
+#: Time series kept when ``simulation.keep_timeseries`` is true: (B, nt) or (B, 3, nt).
+SIM_TIMESERIES_VARS: tuple[str, ...] = (
+    "ts_surge", "ts_sway", "ts_heave", "ts_roll", "ts_pitch", "ts_yaw", "ts_accel", "ts_tension",
+)
+SIM_EXTRA_ATTRS: dict[str, dict[str, str]] = {
+    "surge_mean": {"units": "m", "long_name": "mean surge offset"},
+    "sway_mean": {"units": "m", "long_name": "mean sway offset"},
+    "heave_mean": {"units": "m", "long_name": "mean heave offset"},
+    "pitch_mean": {"units": "deg", "long_name": "mean pitch angle"},
+    "surge_std": {"units": "m", "long_name": "standard deviation of surge"},
+    "pitch_mpm": {"units": "deg", "long_name": "most probable maximum of |pitch|"},
+    "offset_max": {"units": "m", "long_name": "largest horizontal offset in the record"},
+    "tension_mean": {"units": "N", "long_name": "mean fairlead tension"},
+    "tension_std": {"units": "N", "long_name": "standard deviation of fairlead tension"},
+    "tension_max": {"units": "N", "long_name": "largest fairlead tension in the record"},
+    "gev_corr_pitch_mpm": {"units": "1", "long_name": "GEV fit correlation (pitch_mpm)"},
+}
+_TS_UNITS = {"ts_tension": "N", "ts_accel": "m s-2", "ts_roll": "rad", "ts_pitch": "rad", "ts_yaw": "rad"}
+SIM_TIMESERIES_ATTRS: dict[str, dict[str, str]] = {
+    _name: {"units": _TS_UNITS.get(_name, "m"), "long_name": f"time series of {_name[3:]} after the transient"}
+    for _name in SIM_TIMESERIES_VARS
+}
+#: Attributes of every output of ``moorlife.simulate.simulate_batch``: the contract's
+#: ``SIM_ATTRS``, the extras and the time series.
+SIM_OUTPUT_ATTRS: dict[str, dict[str, str]] = {**SIM_ATTRS, **SIM_EXTRA_ATTRS, **SIM_TIMESERIES_ATTRS}
+
+
+def output_attrs(name: str) -> dict[str, str]:
+    """Attributes of any output of ``moorlife.simulate.simulate_batch`` (contract or extra).
+
+    Raises
+    ------
+    KeyError
+        If ``name`` is not an output of the simulator.
+    """
+    if name in SIM_OUTPUT_ATTRS:
+        return dict(SIM_OUTPUT_ATTRS[name])
+    raise KeyError(f"{name!r} is not an output of simulate_batch")
 
 
 def attrs_for(name: str) -> dict[str, str]:

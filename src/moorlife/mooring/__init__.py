@@ -24,6 +24,20 @@ Shapes: ``B`` sea states (batch), 3 lines (M1, M2, M3, see :data:`moorlife.names
 at which the fairleads are at ``r_fair`` with velocity ``v_fair`` and returns the forces at
 that instant; the dynamic model subcycles internally (``mooring.max_time_step``). Returned
 arrays are views into the state, overwritten by the next call: copy them to keep them.
+
+Compiled steps. Each model also has a public Numba-compiled step, which a compiled caller
+(the simulator's record loop, :mod:`moorlife.simulate.kernel`) calls once per platform step
+instead of ``model.step``; the states are records (``typing.NamedTuple``) that compiled code
+takes as they are, and the step updates them in place (``state.forces (B, L, 3)``,
+``state.tension (B, L)``)::
+
+    dynamic.step_lines(state, r_fair, v_fair, dt, model.substeps(dt), model.kernel)
+        # state: DynamicState from DynamicMooring.init; model.kernel: LineKernel
+    quasistatic.step_lines(state, r_fair, model.anchors, model.table)
+        # state: QuasiStaticState from QuasiStaticMooring.init; model.table: ForceTable
+
+They are the same computation as ``model.step`` (which calls them), bit for bit; the
+dynamic step raises ``FloatingPointError`` on a non-finite tension.
 """
 
 from __future__ import annotations
@@ -33,7 +47,8 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from moorlife.mooring.dynamic import DynamicMooring, DynamicState, line_model
+from moorlife.mooring import dynamic, quasistatic
+from moorlife.mooring.dynamic import DynamicMooring, DynamicState, LineKernel, line_model
 from moorlife.mooring.lines import (
     Layout,
     LineProperties,
@@ -43,7 +58,14 @@ from moorlife.mooring.lines import (
     mooring_settings,
     oc4_layout,
 )
-from moorlife.mooring.quasistatic import ForceTable, QuasiStaticMooring, catenary, catenary_solve, force_table
+from moorlife.mooring.quasistatic import (
+    ForceTable,
+    QuasiStaticMooring,
+    QuasiStaticState,
+    catenary,
+    catenary_solve,
+    force_table,
+)
 
 __all__ = [
     "MooringModel",
@@ -65,7 +87,11 @@ __all__ = [
     "ForceTable",
     "DynamicMooring",
     "DynamicState",
+    "LineKernel",
     "QuasiStaticMooring",
+    "QuasiStaticState",
+    "dynamic",
+    "quasistatic",
 ]
 
 

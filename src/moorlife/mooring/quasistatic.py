@@ -17,7 +17,7 @@ Newton solve, so the model is never extrapolated.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -26,6 +26,8 @@ from moorlife.mooring.lines import Layout, LineProperties, MooringSettings
 
 __all__ = [
     "ForceTable",
+    "QuasiStaticState",
+    "step_lines",
     "QuasiStaticMooring",
     "catenary_solve",
     "catenary",
@@ -35,6 +37,65 @@ __all__ = [
     "fairlead_forces",
     "line_stiffness",
 ]
+
+
+# --------------------------------------------------------------------------- records
+class ForceTable(NamedTuple):
+    """Fairlead force on a regular ``(span, height)`` grid for one line type (a record the
+    compiled :func:`step_lines` takes as it is).
+
+    Attributes
+    ----------
+    span0, height0 : float
+        First grid span and height, m.
+    d_span, d_height : float
+        Grid spacing, m.
+    H, V : numpy.ndarray, shape (n_span, n_height)
+        Horizontal and vertical fairlead force, N.
+    length, EA, w, friction : float
+        The line (m, N, N/m, -) used outside the grid.
+    """
+
+    span0: float
+    height0: float
+    d_span: float
+    d_height: float
+    H: np.ndarray
+    V: np.ndarray
+    length: float
+    EA: float
+    w: float
+    friction: float
+
+    def args(self) -> tuple:
+        """Positional arguments of the numba kernels after the geometry."""
+        return (
+            self.span0,
+            self.height0,
+            self.d_span,
+            self.d_height,
+            self.H,
+            self.V,
+            self.length,
+            self.EA,
+            self.w,
+            self.friction,
+        )
+
+
+class QuasiStaticState(NamedTuple):
+    """State of the quasi-static model: the last fairlead forces and tensions (updated in place).
+
+    Attributes
+    ----------
+    forces : numpy.ndarray, shape (B, L, 3)
+        Force of each line on the platform, N.
+    tension : numpy.ndarray, shape (B, L)
+        Fairlead tension magnitude, N.
+    """
+
+    forces: np.ndarray
+    tension: np.ndarray
 
 
 # --------------------------------------------------------------------------- kernels
@@ -124,7 +185,11 @@ def _solve_robust(XF, ZF, L, EA, w, CB, H0, V0, tol):
 
 
 @njit(cache=True)
-def _build_table(x0, z0, dx, dz, nx, nz, L, EA, w, CB, tol, H, V, ok):
+def _build_table(table, tol, ok):
+    """Fill ``table.H`` and ``table.V`` (and ``ok``, converged) at every grid node."""
+    x0, z0, dx, dz, H, V = table.span0, table.height0, table.d_span, table.d_height, table.H, table.V
+    L, EA, w, CB = table.length, table.EA, table.w, table.friction
+    nx, nz = H.shape
     Hr, Vr = 0.0, 0.0
     for j in range(nz):
         Hp, Vp = Hr, Vr
@@ -158,7 +223,23 @@ def _lookup(XF, ZF, x0, z0, dx, dz, H, V, L, EA, w, CB):
 
 
 @njit(cache=True)
-def _fairlead_forces(r_fair, anchors, x0, z0, dx, dz, H, V, L, EA, w, CB, forces, tension):
+def step_lines(state, r_fair, anchors, table):
+    """The compiled step of the quasi-static model: the fairlead forces at ``r_fair``.
+
+    Parameters
+    ----------
+    state : QuasiStaticState
+        Its ``forces (B, L, 3)`` (on the platform, N) and ``tension (B, L)`` (N) are overwritten.
+    r_fair : numpy.ndarray, shape (B, L, 3)
+        Fairlead positions (global frame), m.
+    anchors : numpy.ndarray, shape (L, 3)
+        Anchor positions, m.
+    table : ForceTable
+        The force-displacement surface (exact catenary outside it).
+    """
+    forces, tension = state.forces, state.tension
+    x0, z0, dx, dz, H, V = table.span0, table.height0, table.d_span, table.d_height, table.H, table.V
+    L, EA, w, CB = table.length, table.EA, table.w, table.friction
     nb = r_fair.shape[0]
     nl = r_fair.shape[1]
     for b in range(nb):
@@ -172,6 +253,12 @@ def _fairlead_forces(r_fair, anchors, x0, z0, dx, dz, H, V, L, EA, w, CB, forces
             forces[b, k, 1] = -h * ey / XF
             forces[b, k, 2] = -v
             tension[b, k] = math.sqrt(h * h + v * v)
+
+
+@njit(cache=True)
+def _fairlead_forces(r_fair, anchors, table, forces, tension):
+    """:func:`step_lines` called from Python with a plain tuple ``table`` (a cheaper dispatch)."""
+    step_lines(QuasiStaticState(forces, tension), r_fair, anchors, ForceTable(*table))
 
 
 # --------------------------------------------------------------------------- public API
@@ -276,49 +363,6 @@ def catenary_profile(s: np.ndarray, H: float, V: float, length: float, EA: float
     return out
 
 
-@dataclass(frozen=True)
-class ForceTable:
-    """Fairlead force on a regular ``(span, height)`` grid for one line type.
-
-    Attributes
-    ----------
-    span0, height0 : float
-        First grid span and height, m.
-    d_span, d_height : float
-        Grid spacing, m.
-    H, V : numpy.ndarray, shape (n_span, n_height)
-        Horizontal and vertical fairlead force, N.
-    length, EA, w, friction : float
-        The line (m, N, N/m, -) used outside the grid.
-    """
-
-    span0: float
-    height0: float
-    d_span: float
-    d_height: float
-    H: np.ndarray
-    V: np.ndarray
-    length: float
-    EA: float
-    w: float
-    friction: float
-
-    def args(self) -> tuple:
-        """Positional arguments of the numba kernels after the geometry."""
-        return (
-            self.span0,
-            self.height0,
-            self.d_span,
-            self.d_height,
-            self.H,
-            self.V,
-            self.length,
-            self.EA,
-            self.w,
-            self.friction,
-        )
-
-
 def force_table(props: LineProperties, layout: Layout, settings: MooringSettings) -> ForceTable:
     """Tabulate the catenary fairlead force around the rest position.
 
@@ -344,7 +388,8 @@ def force_table(props: LineProperties, layout: Layout, settings: MooringSettings
     V = np.empty((nx, nz))
     ok = np.empty((nx, nz), dtype=np.bool_)
     mu = settings.friction_coefficient
-    _build_table(x0, z0, res, res, nx, nz, layout.length, props.EA, props.wet_weight, mu, 1e-9 * layout.length, H, V, ok)
+    table = ForceTable(x0, z0, res, res, H, V, layout.length, props.EA, props.wet_weight, mu)
+    _build_table(table, 1e-9 * layout.length, ok)
     if not ok.all():
         i, j = np.argwhere(~ok)[0]
         raise RuntimeError(
@@ -352,7 +397,7 @@ def force_table(props: LineProperties, layout: Layout, settings: MooringSettings
         )
     H.setflags(write=False)
     V.setflags(write=False)
-    return ForceTable(x0, z0, res, res, H, V, layout.length, props.EA, props.wet_weight, mu)
+    return table
 
 
 def table_lookup(table: ForceTable, span: np.ndarray, height: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -394,8 +439,8 @@ def fairlead_forces(
         forces = np.empty(r_fair.shape)
     if tension is None:
         tension = np.empty(r_fair.shape[:2])
-    _fairlead_forces(r_fair, np.ascontiguousarray(anchors, dtype=float), *table.args(), forces, tension)
-    return forces, tension
+    _fairlead_forces(r_fair, np.ascontiguousarray(anchors, dtype=float), tuple(table), forces, tension)
+    return QuasiStaticState(forces, tension)
 
 
 def line_stiffness(span: float, height: float, direction: np.ndarray, props: LineProperties, length: float,
@@ -432,18 +477,19 @@ class QuasiStaticMooring:
 
     def __init__(self, table: ForceTable, layout: Layout, batch: int) -> None:
         self.table = table
+        self._table_args = tuple(table)
         self.anchors = np.ascontiguousarray(layout.anchors, dtype=float)
         self.batch = int(batch)
         self.n_lines = layout.n_lines
 
-    def init(self, r_fair: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def init(self, r_fair: np.ndarray) -> QuasiStaticState:
         """State at fairlead positions ``r_fair (B, L, 3)``."""
         return fairlead_forces(self.table, self.anchors, r_fair)
 
     def step(self, state, r_fair, v_fair, dt):  # noqa: ARG002 - same signature as the dynamic model
         """Forces ``(B, L, 3)`` on the platform at ``r_fair``; returns ``(forces, state)``."""
         forces, tension = state
-        _fairlead_forces(np.ascontiguousarray(r_fair, dtype=float), self.anchors, *self.table.args(), forces, tension)
+        _fairlead_forces(np.ascontiguousarray(r_fair, dtype=float), self.anchors, self._table_args, forces, tension)
         return forces, state
 
     def tension(self, state) -> np.ndarray:
