@@ -12,31 +12,21 @@ from moorlife import names
 from moorlife.simulate.forcing import build_forcing
 from moorlife.simulate.integration import integrate
 from moorlife.simulate.model import ModelInputs
+from moorlife.settings import SimulationSettings, StatisticsSettings
 from moorlife.simulate.summary import summarise
 
 __all__ = ["simulate_batch"]
 
 
-def _sim_settings(sim_cfg: Mapping[str, Any]) -> dict[str, Any]:
-    s = dict(sim_cfg)
-    out = {
-        "duration": float(s.get("duration", 3600.0)),
-        "transient": float(s.get("transient", 600.0)),
-        "dt": float(s.get("dt", 0.1)),
-        "gamma": s.get("gamma", "dnv"),
-        "kinematics_dt": float(s.get("kinematics_dt", 0.25)),
-        "second_order": bool(s.get("second_order", True)),
-        "keep_timeseries": bool(s.get("keep_timeseries", False)),
-        "wind": dict(s.get("wind", {})),
-        "omega_range": s.get("omega_range", None),
-        "mpm_duration": float(s.get("mpm_duration", 3600.0)),
-    }
+def _sim_settings(sim_cfg: Mapping[str, Any] | None) -> SimulationSettings:
+    """The ``simulation`` section as typed settings (missing keys take the schema defaults)."""
+    s = SimulationSettings.from_config(sim_cfg, source="simulation")
     for key in ("duration", "dt", "kinematics_dt"):
-        if not out[key] > 0:
-            raise ValueError(f"config key 'simulation.{key}' = {s.get(key)!r} must be positive")
-    if out["transient"] < 0:
-        raise ValueError(f"config key 'simulation.transient' = {s.get('transient')!r} must be >= 0")
-    return out
+        if not getattr(s, key) > 0:
+            raise ValueError(f"config key 'simulation.{key}' = {getattr(s, key)!r} must be positive")
+    if s.transient < 0:
+        raise ValueError(f"config key 'simulation.transient' = {s.transient!r} must be >= 0")
+    return s
 
 
 def _check_cases(cases: Mapping[str, np.ndarray], case_ids: np.ndarray) -> dict[str, np.ndarray]:
@@ -101,20 +91,19 @@ def simulate_batch(
     sea = _check_cases(cases, ids)
     s = _sim_settings(sim_cfg)
     model = model_inputs
-    grid = env.record_grid(s["duration"], s["transient"], s["dt"])
+    grid = env.record_grid(s.duration, s.transient, s.dt)
     n_bins = grid.n_fft // 2 + 1
     wave_ph, wind_ph = env.case_streams(seed, mooring_system, ids, n_bins, stream)
-    gamma = env.resolve_gamma(s["gamma"], sea["hs"], sea["tp"])
-    w_lo, w_hi = (float(model.omega.min()), float(model.omega.max())) if s["omega_range"] is None else map(
-        float, s["omega_range"])
+    gamma = env.resolve_gamma(s.gamma, sea["hs"], sea["tp"])
+    w_lo, w_hi = float(model.omega.min()), float(model.omega.max())
     waves = env.wave_components(grid, sea["hs"], sea["tp"], sea["wave_dir"], gamma, wave_ph,
                                 omega_min=w_lo, omega_max=w_hi)
-    wind_cfg = {**s["wind"], "height": float(model.hub[2])}
+    wind_cfg = {**s.wind.as_dict(), "height": float(model.hub[2])}
     wind = env.wind_series(grid, sea["wind_speed"], wind_ph, wind_cfg)
-    kin_every = max(1, int(round(s["kinematics_dt"] / s["dt"])))
+    kin_every = max(1, int(round(s.kinematics_dt / s.dt)))
     forcing = build_forcing(model, grid, waves, wind, sea["wind_dir"], kin_every=kin_every,
-                            second_order=s["second_order"])
-    record = integrate(model, forcing, transient=s["transient"])
+                            second_order=s.second_order)
+    record = integrate(model, forcing, transient=s.transient)
     bad = ~np.isfinite(record.motion).all(axis=(1, 2))
     if model.mooring_kind != "linear":
         bad |= ~np.isfinite(record.tension).all(axis=(1, 2))
@@ -125,6 +114,6 @@ def simulate_batch(
             f"hs={sea['hs'][b]}, tp={sea['tp'][b]}, wave_dir={sea['wave_dir'][b]}, wind_speed={sea['wind_speed'][b]}, "
             f"wind_dir={sea['wind_dir'][b]}; reduce simulation.dt"
         )
-    st = {**dict(stats_cfg or {}), "mpm_duration": s["mpm_duration"]}
-    return summarise(record, line_info=model.line_info, fatigue_cfg=fatigue_cfg, stats_cfg=st,
-                     keep_timeseries=s["keep_timeseries"])
+    statistics = StatisticsSettings.from_config(stats_cfg, source="statistics")
+    return summarise(record, line_info=model.line_info, fatigue_cfg=fatigue_cfg, statistics=statistics,
+                     mpm_duration=s.mpm_duration, keep_timeseries=s.keep_timeseries)

@@ -9,6 +9,7 @@ from typing import Any
 
 import numpy as np
 
+from moorlife.settings import SimulationSettings
 from moorlife.simulate.kernel import _fairlead_motion, _moor_generalised
 from moorlife.simulate.linear import radiation_impedance
 from moorlife.simulate.model import ModelInputs, build_model
@@ -97,7 +98,7 @@ def prepare_model(
     from moorlife import hydro
 
     # the state-space fit (5-16 s) is only needed when it is the radiation model
-    ss_order = 30 if str(sim_cfg.get("radiation", "convolution")) == "statespace" else None
+    ss_order = 30 if SimulationSettings.from_config(sim_cfg, source="simulation").radiation == "statespace" else None
     pm = hydro.load_platform_model(platform_ds, platform_cfg, ss_order=ss_order)
     return attach_mooring(platform_from(pm, platform_cfg, sim_cfg), mooring_row, mooring_cfg)
 
@@ -116,24 +117,25 @@ def platform_from(pm: Any, platform_cfg: Mapping[str, Any], sim_cfg: Mapping[str
     """
     from moorlife import turbine
 
+    sim = SimulationSettings.from_config(sim_cfg, source="simulation")
     rho = float(pm.rho)
     members = platform_cfg.get("members")
     if not members:
         raise ValueError("platform config: no 'members' (needed for the Morison drag strips)")
-    strip_len = max(float(sim_cfg.get("drag_strip_length", 4.0)), float(platform_cfg.get("morison_strip_length", 1.0)))
+    strip_len = max(sim.drag_strip_length, float(platform_cfg.get("morison_strip_length", 1.0)))
     strips = _strips_from_members(members, strip_len, rho)
     v = np.arange(-40.0, 80.0 + 1e-9, 0.02)
     thrust = turbine.thrust(v, pm.ct_wind_speed, pm.ct, rho_air=pm.rho_air, rotor_area=pm.rotor_area,
                             cut_in=pm.cut_in, cut_out=pm.cut_out, shutdown_ramp=pm.shutdown_ramp,
                             startup_ramp=pm.startup_ramp)
     filt = turbine.notch_filter(pm.pitch_filter_centre, pm.pitch_filter_quality)
-    damp = np.diag(np.asarray(sim_cfg.get("extra_damping", [0.0] * 6), dtype=float))
+    damp = np.diag(np.asarray(sim.extra_damping, dtype=float))
     depth = float(pm.water_depth)
     if not np.isfinite(depth):  # e.g. a WAMIT import without the depth
         depth = float(platform_cfg["environment"]["water_depth"])
-    radiation = str(sim_cfg.get("radiation", "convolution"))
+    radiation = sim.radiation
     if radiation == "convolution":
-        memory = float(sim_cfg.get("radiation_memory", 60.0))
+        memory = sim.radiation_memory
         nk = int(np.searchsorted(np.asarray(pm.kernel_t), memory + 1e-9))
         kern6 = np.asarray(pm.kernel, float)[:nk]
         pairs = _kernel_pairs(kern6)

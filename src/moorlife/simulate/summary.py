@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 
 from moorlife import names
+from moorlife.settings import StatisticsSettings
 from moorlife.simulate.integration import Record
 
 __all__ = ["EXTRA_SCALAR_VARS", "EXTRA_LINE_VARS", "EXTRA_ATTRS", "TIMESERIES_VARS", "output_attrs", "summarise"]
@@ -29,7 +30,8 @@ def summarise(
     *,
     line_info: Mapping[str, Any],
     fatigue_cfg: Mapping[str, Any] | None,
-    stats_cfg: Mapping[str, Any] | None,
+    statistics: StatisticsSettings,
+    mpm_duration: float,
     keep_timeseries: bool = False,
 ) -> dict[str, np.ndarray]:
     """The per-case outputs of a batch of records.
@@ -42,10 +44,10 @@ def summarise(
         ``link_diameter`` (m), ``mbs`` (N), ``chain`` of the lines.
     fatigue_cfg : mapping or None
         The ``fatigue:`` config section (curves, mean stress, residue); None skips damage.
-    stats_cfg : mapping or None
-        The ``statistics:`` section (``block``: GEV block length in s, ``method``) plus
-        ``mpm_duration`` (s, the duration the MPM refers to; default 3600, one hour of sea
-        state; taken from ``simulation.mpm_duration`` by :func:`simulate_batch`).
+    statistics : StatisticsSettings
+        The ``statistics:`` section (``block``: GEV block length in s, ``method``).
+    mpm_duration : float
+        Duration in s the most probable maxima refer to (``simulation.mpm_duration``).
     keep_timeseries : bool
         Also return the records (``ts_*``).
 
@@ -59,10 +61,7 @@ def summarise(
     """
     from moorlife import stats
 
-    st = dict(stats_cfg or {})
-    block = float(st.get("block", 60.0))
-    mpm_duration = float(st.get("mpm_duration", 3600.0))
-    method = str(st.get("method", "lmoments"))
+    block, method = statistics.block, statistics.method
     dt = record.dt
     mo = record.motion
     nt = mo.shape[-1]
