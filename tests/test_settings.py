@@ -158,9 +158,6 @@ def test_schema_ships_with_the_package():
 # ------------------------------------------------- no schema default repeated in the code
 #: Files still reading config keys with literal fallbacks, each with its reason.
 ALLOWED_FILES = {
-    "mooring/dynamic.py": "pending merge",
-    "mooring/quasistatic.py": "pending merge",
-    "mooring/__init__.py": "pending merge",
     "parallel.py": "pending merge",
     "config.py": "pending merge",
     "metocean/build.py": "pending merge (moving to the stage layer)",
