@@ -369,7 +369,8 @@ def _is_nora3(meta: Mapping[str, Any], columns: list[str]) -> bool:
 
 
 # ------------------------------------------------------------------------------------ checks
-_TZ = re.compile(r"(?:Z|[+-]\d{2}(?::?\d{2})?)$", re.I)
+#: a UTC offset after the time of day (a date alone, 2000-01-01, ends in "-01" but has none)
+_TZ = re.compile(r"\d{2}:\d{2}(?::\d{2}(?:\.\d+)?)?\s*(?:Z|UTC|GMT|[+-]\d{2}(?::?\d{2})?)$", re.I)
 
 
 def period_bounds(start: Any, end: Any) -> tuple[pd.Timestamp, pd.Timestamp]:
