@@ -358,6 +358,17 @@ def test_issue20_sensitivity_system_not_in_table():
     check_against_table(_base(QUICK), ids, "good.yaml")
 
 
+def test_issue20_corrosion_consumes_the_link():
+    """A corrosion rate that eats a link within the design life failed only at the end of lifecycle."""
+    table = read_mooring_systems(ROOT / "config" / "mooring_systems.tsv")
+    d = dict(table["link_diameter_mm"])
+    cfg = validate_config(_base(QUICK, {"fatigue": {"corrosion": {"rate": 5.0}}}), read_yaml(SCHEMA))
+    with pytest.raises(ConfigError, match=r"bad\.yaml: config keys 'fatigue\.corrosion\.rate' = 5\.0 mm/year over "
+                                          r"'fatigue\.design_life' = 25\.0 years remove 125 mm, the whole \d+ mm link of MS1"):
+        check_against_table(cfg, list(table.index), "bad.yaml", d)
+    check_against_table(validate_config(_base(QUICK), read_yaml(SCHEMA)), list(table.index), "good.yaml", d)
+
+
 # ----------------------------------------------------------------- the mooring table
 TSV = (ROOT / "config" / "mooring_systems.tsv").read_text()
 

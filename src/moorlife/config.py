@@ -243,14 +243,31 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
                  "the same length (one value per regime or direction)")
 
 
-def check_against_table(cfg: Mapping[str, Any], ids: list[str], source: str = "config") -> None:
-    """Keys that name a mooring system must name one of the table (``config['mooring_systems']``).
+def check_against_table(
+    cfg: Mapping[str, Any],
+    ids: list[str],
+    source: str = "config",
+    link_diameters_mm: Mapping[str, float] | None = None,
+) -> None:
+    """Checks of the configuration against the mooring-system table (``config['mooring_systems']``).
+
+    Parameters
+    ----------
+    cfg : mapping
+        The validated configuration.
+    ids : list of str
+        The table's mooring systems.
+    source : str
+        Where the configuration came from, quoted in error messages.
+    link_diameters_mm : mapping, optional
+        ``mooring_system -> link_diameter_mm``; checks the corrosion allowance if given.
 
     Raises
     ------
     ConfigError
         ``lifecycle.sensitivity.mooring_system`` is not in the table (the sensitivities would
-        silently drop out of the DAG).
+        silently drop out of the DAG), or ``fatigue.corrosion.rate`` over
+        ``fatigue.design_life`` consumes a system's link (which failed at the end of lifecycle).
     """
     ms = _get(cfg, "lifecycle.sensitivity.mooring_system")
     if ms is not None and ms not in ids:
@@ -258,6 +275,15 @@ def check_against_table(cfg: Mapping[str, Any], ids: list[str], source: str = "c
             f"{source}: config key 'lifecycle.sensitivity.mooring_system' = {ms!r} is not a mooring system of "
             f"the table {_get(cfg, 'mooring_systems')} ({', '.join(ids)})"
         )
+    rate, life = _get(cfg, "fatigue.corrosion.rate"), _get(cfg, "fatigue.design_life")
+    if link_diameters_mm and isinstance(rate, (int, float)) and isinstance(life, (int, float)):
+        for name, d0 in link_diameters_mm.items():
+            if float(d0) - rate * life <= 0.0:
+                raise ConfigError(
+                    f"{source}: config keys 'fatigue.corrosion.rate' = {rate!r} mm/year over 'fatigue.design_life' = "
+                    f"{life!r} years remove {rate * life:g} mm, the whole {float(d0):g} mm link of {name} "
+                    f"({_get(cfg, 'mooring_systems')})"
+                )
 
 
 def _hour() -> Any:

@@ -15,7 +15,7 @@ config.update(
 )
 MOORING = read_mooring_systems(config["mooring_systems"])
 MS_IDS = list(MOORING.index)
-check_against_table(config, MS_IDS, _cfg_sources)
+check_against_table(config, MS_IDS, _cfg_sources, dict(MOORING["link_diameter_mm"]))
 
 
 def mooring_row(ms):
