@@ -64,6 +64,9 @@ def write_csv(path: Path, df: pd.DataFrame, header: str = NORA3_HEADER) -> Path:
 def load(path, **kw):
     kw.setdefault("start", START)
     kw.setdefault("end", END)
+    # several fixtures below hold a constant column (a 48-hour table); the constant-input check
+    # is tested on its own (test_constant_input_refused)
+    kw.setdefault("require_varying", False)
     return read_hindcast(path, hub_height=HUB, shear_exponent=ALPHA, **kw)
 
 
@@ -397,3 +400,88 @@ def test_missing_file_and_unknown_format(tmp_path):
     p.write_text("x")
     with pytest.raises(HindcastError, match="hindcast.format"):
         load(p)
+
+
+# ------------------------------------------------------------------ issue 20: policies, UTC, BOM
+def _impossible(df):
+    df = df.copy()
+    df.loc[5, "tp"] = 0.01  # below the Tp floor
+    df.loc[9, ["hs", "tp"]] = [20.0, 3.0]  # steepness 1.42
+    return df
+
+
+def test_impossible_sea_states_refused_dropped_or_clipped(tmp_path, caplog):
+    from moorlife.cleaning import BREAKING_STEEPNESS, TP_FLOOR, check_sea_states
+
+    df = nora3_frame()
+    p = write_csv(tmp_path / "bad.csv", _impossible(df))
+    with pytest.raises(HindcastError, match=rf"bad\.csv: columns 'hs'/'tp', row {data_line(p, 5)} .*tp = 0\.01 s .*\(2 such row"):
+        load(p)
+    # drop: the rows become gaps, interpolated within max_gap_hours (else refused as gaps)
+    with pytest.raises(HindcastError, match=r"1 hour\(s\) missing or NaN"):
+        load(p, sea_states="drop")
+    caplog.clear()
+    with caplog.at_level(logging.WARNING, logger="moorlife.io.hindcast"):
+        ds = load(p, sea_states="drop", cleaning=CleaningPolicy(max_gap_hours=1))
+    assert sum("dropped" in r.getMessage() for r in caplog.records) == 2
+    np.testing.assert_allclose(ds["tp"][5], 0.5 * (df["tp"][4] + df["tp"][6]))
+    np.testing.assert_allclose(ds["hs"][9], 0.5 * (df["hs"][8] + df["hs"][10]))
+    # clip: Hs kept, Tp raised to the smallest possible period
+    caplog.clear()
+    with caplog.at_level(logging.WARNING, logger="moorlife.io.hindcast"):
+        ds = load(p, sea_states="clip")
+    assert sum("clipped tp" in r.getMessage() for r in caplog.records) == 2
+    g2pi = 9.80665 / (2 * np.pi)
+    assert float(ds["hs"][5]) == df["hs"][5] and float(ds["hs"][9]) == 20.0
+    for i, h in ((5, df["hs"][5]), (9, 20.0)):  # the breaking limit binds (above the floor)
+        np.testing.assert_allclose(float(ds["tp"][i]), max(TP_FLOOR, np.sqrt(h / (g2pi * BREAKING_STEEPNESS))), rtol=1e-12)
+    assert not check_sea_states(ds["hs"].values, ds["tp"].values).bad.any()
+    np.testing.assert_array_equal(np.delete(ds["tp"].values, [5, 9]), np.delete(df["tp"].values, [5, 9]))
+    with pytest.raises(HindcastError, match=r"hindcast\.cleaning\.sea_states = 'maybe': expected one of"):
+        load(p, sea_states="maybe")
+
+
+def test_steepness_kernel_limits():
+    from moorlife.cleaning import check_sea_states, clipped_tp, steepness
+
+    hs = np.array([1.0, 20.0, 0.1, np.nan, -1.0, 5.0])
+    tp = np.array([8.0, 3.0, 0.9, 5.0, 6.0, 4.0])
+    rep = check_sea_states(hs, tp)
+    np.testing.assert_array_equal(rep.too_steep, [False, True, False, False, False, True])
+    np.testing.assert_array_equal(rep.too_short, [False, False, True, False, False, False])
+    assert np.isnan(rep.steepness[3]) and np.isnan(rep.steepness[4])  # left to the range checks
+    s = steepness(hs, clipped_tp(hs, tp))
+    assert np.nanmax(s) <= 1 / 7 and np.isnan(s[3]) and clipped_tp(hs, tp)[4] == 6.0
+
+
+@pytest.mark.parametrize(
+    "stamp",
+    [lambda t: t.strftime("%Y-%m-%dT%H:%M:%SZ"),  # ERA5 style "Z"
+     lambda t: (t + pd.Timedelta(hours=1)).strftime("%Y-%m-%d %H:%M:%S+01:00"),
+     # CET/CEST: the offset changes at the end of March (mixed DST offsets in one file)
+     lambda t: t.tz_localize("UTC").tz_convert("Europe/Madrid").isoformat()],
+    ids=["Z", "plus_0100", "dst_offsets"],
+)
+def test_timezone_aware_timestamps_converted_to_utc(tmp_path, stamp):
+    t = pd.date_range("2000-03-25", periods=N, freq="h")
+    df = nora3_frame().assign(time=[stamp(x) for x in t])
+    p = write_csv(tmp_path / "tz.csv", df)
+    ds = load(p, start="2000-03-25T00:00", end="2000-03-26T23:00")
+    np.testing.assert_array_equal(ds["time"].values, t.values)
+    np.testing.assert_allclose(ds["hs"], df["hs"])
+
+
+def test_bom_before_header_lines(tmp_path):
+    """A byte-order mark before the '#' lines (Excel, Windows tools) used to give a ParserError."""
+    p = tmp_path / "bom.csv"
+    p.write_bytes(b"\xef\xbb\xbf" + (NORA3_HEADER + nora3_frame().to_csv(index=False)).encode())
+    ds = load(p)
+    assert ds.sizes["time"] == N and ds.attrs["lon"] == 1.3358  # the '#' lines were read
+
+
+def test_constant_input_refused(tmp_path):
+    df = nora3_frame().assign(wind_speed_10m=0.0, wind_speed_100m=0.0, wind_speed_250m=0.0)
+    p = write_csv(tmp_path / "calm.csv", df)
+    with pytest.raises(HindcastError, match=r"calm\.csv: column 'wind_speed_100m' \(variable wind_speed\) is constant, 0"):
+        load(p, require_varying=True)
+    assert load(p, require_wind=False)["hs"].size == N  # waves-only inspection: not checked

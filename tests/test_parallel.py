@@ -167,7 +167,7 @@ def test_workers_run_single_threaded(client):
     assert set(env.values()) == {"1"}
     hosts = {addr.split("://")[1].rsplit(":", 1)[0] for addr in env}
     assert hosts == {"127.0.0.1"}, "workers must bind to loopback only"
-    assert client.scheduler_info()["address"].startswith("tcp://127.0.0.1:")
+    assert client.scheduler_info()["address"].startswith("tls://127.0.0.1:"), "TLS with temporary credentials"
     assert client.dashboard_link.startswith("http://127.0.0.1:"), client.dashboard_link
 
 

@@ -39,6 +39,8 @@ __all__ = [
     "pin_blas_threads",
     "restore_env",
     "dask_client",
+    "check_scheduler_address",
+    "temporary_security",
     "batch_slices",
     "dataset_digest",
     "map_cases",
@@ -84,6 +86,84 @@ def restore_env(old: Mapping[str, str | None]) -> None:
             os.environ[k] = v
 
 
+def check_scheduler_address(address: str) -> str:
+    """Refuse a scheduler address that cannot be one, naming where it came from.
+
+    Returns the address unchanged. Accepted: ``tcp://host:port``, ``tls://host:port``, or
+    ``host:port`` (TCP), with a port number 1-65535.
+    """
+    from distributed.comm import parse_address
+    from distributed.comm.addressing import parse_host_port
+
+    where = f"environment variable {SCHEDULER_ENV}" if address == os.environ.get(SCHEDULER_ENV) else "scheduler address"
+    try:
+        scheme, loc = parse_address(address)
+        if scheme not in ("tcp", "tls", "inproc", "ucx", "ws", "wss"):
+            raise ValueError(scheme)
+        if scheme in ("tcp", "tls", "ws", "wss"):
+            _, port = parse_host_port(loc)
+            if not 0 < int(port) < 65536:
+                raise ValueError(port)
+    except (ValueError, TypeError):
+        raise ValueError(
+            f"{where} = {address!r} is not a Dask scheduler address; expected tls://host:port (or tcp://host:port)"
+        ) from None
+    return address
+
+
+def _openssl_security(folder: Path) -> Any:
+    """A :class:`distributed.security.Security` from a self-signed certificate made by ``openssl``."""
+    import subprocess
+
+    from distributed.security import Security
+
+    key, cert = folder / "key.pem", folder / "cert.pem"
+    subprocess.run(
+        ["openssl", "req", "-x509", "-newkey", "ec", "-pkeyopt", "ec_paramgen_curve:prime256v1", "-nodes",
+         "-keyout", str(key), "-out", str(cert), "-days", "7", "-subj", "/CN=moorlife-dask"],
+        check=True, capture_output=True, timeout=60,
+    )
+    os.chmod(key, 0o600)
+    return Security(
+        tls_ca_file=str(cert), tls_client_cert=str(cert), tls_client_key=str(key),
+        tls_scheduler_cert=str(cert), tls_scheduler_key=str(key),
+        tls_worker_cert=str(cert), tls_worker_key=str(key), require_encryption=True,
+    )
+
+
+@contextlib.contextmanager
+def temporary_security() -> Iterator[Any]:
+    """TLS credentials valid for one private cluster, removed afterwards.
+
+    ``Security.temporary()`` (in memory; needs the ``cryptography`` package) when available,
+    else a self-signed certificate made with the ``openssl`` command in a private folder (mode
+    0700, key 0600). Scheduler, workers and client all require it: a process without the
+    certificate, e.g. another local user's, cannot connect.
+    """
+    import subprocess
+    import tempfile
+
+    from distributed.security import Security
+
+    try:
+        temporary = Security.temporary()
+    except ImportError:
+        temporary = None
+    if temporary is not None:
+        yield temporary
+        return
+    with tempfile.TemporaryDirectory(prefix="moorlife-dask-") as tmp:
+        os.chmod(tmp, 0o700)
+        try:
+            sec = _openssl_security(Path(tmp))
+        except (OSError, subprocess.SubprocessError) as exc:
+            raise RuntimeError(
+                "cannot make TLS credentials for the private Dask cluster: install the 'cryptography' package "
+                f"or the 'openssl' command ({exc})"
+            ) from exc
+        yield sec
+
+
 @contextlib.contextmanager
 def dask_client(threads: int = 1, *, address: str | None = None) -> Iterator[Any]:
     """A :class:`distributed.Client` on an existing scheduler or a private LocalCluster.
@@ -95,30 +175,53 @@ def dask_client(threads: int = 1, *, address: str | None = None) -> Iterator[Any
     address : str, optional
         Scheduler address; defaults to ``$DASK_SCHEDULER_ADDRESS``. Workers of an external
         cluster must be able to ``import moorlife`` (install the package on them).
+
+    Notes
+    -----
+    The private LocalCluster listens on 127.0.0.1 only and speaks TLS with temporary
+    credentials (:func:`temporary_security`): a Dask scheduler runs any function a client
+    sends, so without them any local user of a shared host could run code as the study's user.
+
+    An external cluster is secured by its owner: start the scheduler and workers with TLS
+    (``dask scheduler --tls-ca-file ca.pem --tls-cert cert.pem --tls-key key.pem``, the same
+    for ``dask worker``) and give the client the same through Dask's configuration, which
+    :class:`distributed.security.Security` reads: ``distributed.comm.require-encryption: true``
+    and ``distributed.comm.tls.{ca-file, client.cert, client.key}`` in ``~/.config/dask/*.yaml``
+    or the environment (``DASK_DISTRIBUTED__COMM__TLS__CA_FILE=...``); then set
+    ``DASK_SCHEDULER_ADDRESS=tls://host:port``. A ``tcp://`` address is unauthenticated and
+    logged as such.
     """
     from distributed import Client, LocalCluster
+    from distributed.security import Security
 
     address = address or os.environ.get(SCHEDULER_ENV) or None
     if address:
+        check_scheduler_address(address)
+        if not address.startswith("tls://"):
+            _log.warning("the Dask scheduler at %s is not TLS-secured: anyone who can reach it can run code on it",
+                         address)
         _log.info("joining the Dask scheduler at %s", address)
-        with Client(address, timeout="60s") as client:
+        with Client(address, timeout="60s", security=Security()) as client:
             yield client
         return
     old = pin_blas_threads()
     n = max(1, int(threads))
     env = {k: "1" for k in BLAS_ENV}
     try:
-        with LocalCluster(
+        with temporary_security() as security, LocalCluster(
             n_workers=n,
             threads_per_worker=1,
             processes=True,
             host="127.0.0.1",
+            protocol="tls://",
+            security=security,
             scheduler_port=0,
             dashboard_address="127.0.0.1:0",
             silence_logs=logging.WARNING,
             env=env,
-        ) as cluster, Client(cluster) as client:
-            _log.info("LocalCluster with %d worker(s), dashboard %s", n, client.dashboard_link)
+        ) as cluster, Client(cluster, security=security) as client:
+            _log.info("LocalCluster (TLS) with %d worker(s) at %s, dashboard %s", n, cluster.scheduler_address,
+                      client.dashboard_link)
             yield client
     finally:
         restore_env(old)

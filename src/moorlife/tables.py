@@ -33,7 +33,11 @@ def validate_mooring_systems(df: pd.DataFrame, source: str = "mooring_systems.ts
     """
     missing = [c for c in MOORING_COLUMNS if c not in df.columns]
     if missing:
-        raise ValueError(f"{source}: missing column(s) {missing}; expected {list(MOORING_COLUMNS)}")
+        # the found names are never echoed: a wrong path may name a file with secrets in it
+        raise ValueError(
+            f"{source}: missing column(s) {missing}; expected the tab-separated columns {list(MOORING_COLUMNS)} "
+            f"(the file's header has {len(df.columns)} column(s))"
+        )
     if df.empty:
         raise ValueError(f"{source}: no mooring systems defined")
     for i, ms in enumerate(df["mooring_system"], start=2):
@@ -54,6 +58,14 @@ def validate_mooring_systems(df: pd.DataFrame, source: str = "mooring_systems.ts
                 f"{df[col].iloc[i]} must be a positive number"
             )
         df[col] = values
+    weak = df["MBS_N"].to_numpy() <= 1e3 * df["pretension_kN"].to_numpy()
+    if weak.any():
+        i = int(np.flatnonzero(weak)[0])
+        raise ValueError(
+            f"{source}: row {i + 2} ({df['mooring_system'].iloc[i]}): MBS_N = {df['MBS_N'].iloc[i]:g} N is not above "
+            f"the pretension pretension_kN = {df['pretension_kN'].iloc[i]:g} kN ({1e3 * df['pretension_kN'].iloc[i]:g} N): "
+            "the line would break at rest (check the units: MBS in N, pretension in kN)"
+        )
     bad_chain = ~df["chain"].isin(["studless", "stud"])
     if bad_chain.any():
         i = int(np.flatnonzero(bad_chain.to_numpy())[0])

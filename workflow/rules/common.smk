@@ -1,7 +1,7 @@
 # Helpers shared by every stage: config validation, the mooring-system table, targets.
 import os
 
-from moorlife.config import validate_config
+from moorlife.config import check_against_table, validate_config
 from moorlife.hydro import bem_settings
 from moorlife.io.platform import read_platform_config
 from moorlife.io import read_mooring_systems, read_yaml
@@ -15,6 +15,7 @@ config.update(
 )
 MOORING = read_mooring_systems(config["mooring_systems"])
 MS_IDS = list(MOORING.index)
+check_against_table(config, MS_IDS, _cfg_sources, dict(MOORING["link_diameter_mm"]))
 
 
 def mooring_row(ms):

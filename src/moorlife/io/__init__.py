@@ -8,8 +8,12 @@ killed run never leaves a half-written store under the declared name.
 
 from __future__ import annotations
 
+import errno
+import logging
 import os
+import re
 import shutil
+import socket
 import uuid
 import warnings
 from collections.abc import Mapping
@@ -33,6 +37,7 @@ __all__ = [
     "read_mooring_systems",
     "promote",
     "partial_path",
+    "stale_temporaries",
     "save_figure",
     "storable",
 ]
@@ -40,6 +45,10 @@ __all__ = [
 #: Root attribute set last on every store this package writes.
 COMPLETE_ATTR = "moorlife_complete"
 ZARR_KW: dict[str, Any] = {"consolidated": False}
+_log = logging.getLogger("moorlife.io")
+#: ``.<store>.tmp-<host>-<pid>-<hex>``: the writer's host and process, so that a later write
+#: can tell a temporary left by a killed writer from one being written right now.
+_TMP = re.compile(r"^\.(?P<store>.+)\.tmp-(?:(?P<host>[A-Za-z0-9_.-]+?)-(?P<pid>\d+)-)?(?P<hex>[0-9a-f]{8})$")
 
 
 class IncompleteStoreError(RuntimeError):
@@ -90,6 +99,53 @@ def _mark_complete(path: Path) -> None:
     group.attrs[COMPLETE_ATTR] = True
 
 
+def _host() -> str:
+    return re.sub(r"[^A-Za-z0-9_.]", "_", socket.gethostname()) or "host"
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # another user's live process
+        return True
+    return True
+
+
+def tmp_path(dst: Path) -> Path:
+    """The temporary sibling of ``dst`` for this process: ``.<name>.tmp-<host>-<pid>-<hex>``."""
+    return dst.parent / f".{dst.name}.tmp-{_host()}-{os.getpid()}-{uuid.uuid4().hex[:8]}"
+
+
+def stale_temporaries(dst: str | os.PathLike[str]) -> list[Path]:
+    """Temporaries of the store ``dst`` left by writers that are gone (e.g. after a SIGKILL).
+
+    Only temporaries of this very store name are considered; one is stale when its writer ran
+    on this host and its process no longer exists, or when it carries no writer at all (the
+    naming of moorlife before the writer was recorded). A temporary whose writer is alive, or
+    ran on another host (shared filesystem: its liveness cannot be checked here), is kept.
+    """
+    d = Path(dst)
+    out: list[Path] = []
+    if not d.parent.is_dir():
+        return out
+    host = _host()
+    for p in d.parent.iterdir():
+        m = _TMP.match(p.name)
+        if m is None or m["store"] != d.name:
+            continue
+        if m["pid"] is None or (m["host"] == host and int(m["pid"]) != os.getpid() and not _pid_alive(int(m["pid"]))):
+            out.append(p)
+    return sorted(out)
+
+
+def _remove_stale(dst: Path) -> None:
+    for p in stale_temporaries(dst):
+        _log.warning("%s: removing the stale temporary %s left by a killed writer", dst, p.name)
+        shutil.rmtree(p, ignore_errors=True) if p.is_dir() else p.unlink(missing_ok=True)
+
+
 def write_zarr(
     ds: xr.Dataset,
     path: str | os.PathLike[str],
@@ -98,7 +154,9 @@ def write_zarr(
 ) -> Path:
     """Write a Dataset as a complete Zarr store, atomically.
 
-    The store is written to a temporary sibling, flagged complete, then renamed to ``path``.
+    The store is written to a temporary sibling ``.<name>.tmp-<host>-<pid>-<hex>``, flagged
+    complete, then renamed to ``path``. Temporaries of the same store left by a writer that no
+    longer runs (a SIGKILL skips every clean-up) are removed first (:func:`stale_temporaries`).
 
     Parameters
     ----------
@@ -108,14 +166,24 @@ def write_zarr(
         The declared output.
     encoding : mapping, optional
         Per-variable Zarr encoding (chunks, compressors).
+
+    Raises
+    ------
+    OSError
+        Naming the store, when the disk refuses the write (e.g. ENOSPC); nothing is left.
     """
     dst = Path(path)
     dst.parent.mkdir(parents=True, exist_ok=True)
-    tmp = dst.parent / f".{dst.name}.tmp-{uuid.uuid4().hex[:8]}"
+    _remove_stale(dst)
+    tmp = tmp_path(dst)
     try:
         storable(ds).to_zarr(tmp, mode="w", encoding=dict(encoding or {}), **ZARR_KW)
         _mark_complete(tmp)
         promote(tmp, dst)
+    except OSError as exc:
+        reason = os.strerror(exc.errno) if exc.errno else str(exc)
+        hint = ": free some space, or point results/ elsewhere" if exc.errno in (errno.ENOSPC, errno.EDQUOT) else ""
+        raise OSError(exc.errno, f"{dst}: writing the Zarr store failed ({reason}){hint}") from exc
     finally:
         if tmp.exists():
             shutil.rmtree(tmp, ignore_errors=True)
@@ -198,13 +266,56 @@ def read_study_config(
     return validate_config(merged, read_yaml(schema), source=names)
 
 
+def _header_fields(p: Path) -> list[str] | None:
+    """The tab-separated fields of the first line that is neither blank nor a ``#`` comment."""
+    with p.open("r", encoding="utf-8-sig", errors="replace") as fh:
+        for line in fh:
+            if line.strip() and not line.lstrip().startswith("#"):
+                return [f.strip() for f in line.rstrip("\r\n").split("\t")]
+    return None
+
+
 def read_mooring_systems(path: str | os.PathLike[str]) -> pd.DataFrame:
-    """Read the mooring-system table (one row per system, indexed by ``mooring_system``)."""
-    from moorlife.tables import validate_mooring_systems
+    """Read the mooring-system table (one row per system, indexed by ``mooring_system``).
+
+    Raises
+    ------
+    ValueError
+        Naming the file and, never quoting the file's content beyond the expected column names:
+        an empty file, another delimiter than tab, duplicated or missing columns, a ragged row,
+        or a bad value (:func:`moorlife.tables.validate_mooring_systems`).
+    """
+    from moorlife.tables import MOORING_COLUMNS, validate_mooring_systems
 
     p = Path(path)
+    if not p.is_file():
+        raise ValueError(f"{p}: no such mooring-system table (config key 'mooring_systems')")
+    expected = list(MOORING_COLUMNS)
     try:
-        df = pd.read_csv(p, sep="\t", comment="#", dtype={"mooring_system": str, "chain": str})
+        fields = _header_fields(p)
+    except OSError as exc:
+        raise ValueError(f"{p}: the mooring-system table cannot be read ({exc.strerror})") from exc
+    if not fields:
+        raise ValueError(f"{p}: the mooring-system table is empty")
+    if len(fields) == 1:
+        for name, sep in (("comma", ","), ("semicolon", ";"), ("space", " ")):
+            if sum(c in fields[0].split(sep) for c in expected) >= 2:
+                raise ValueError(
+                    f"{p}: the mooring-system table is {name}-separated; the columns must be separated by tabs "
+                    f"(expected {expected})"
+                )
+    dup = sorted({f for f in fields if fields.count(f) > 1})
+    if dup:
+        shown = [f for f in dup if f in MOORING_COLUMNS]
+        raise ValueError(
+            f"{p}: duplicated column name(s) {shown or f'({len(dup)} name(s))'}; each of {expected} must appear once"
+        )
+    try:
+        df = pd.read_csv(p, sep="\t", comment="#", dtype={"mooring_system": str, "chain": str}, encoding="utf-8-sig")
     except pd.errors.EmptyDataError as exc:
         raise ValueError(f"{p}: the mooring-system table is empty") from exc
+    except (pd.errors.ParserError, UnicodeDecodeError) as exc:
+        line = re.search(r"line (\d+)", str(exc))
+        where = f" (line {line.group(1)}: another number of fields than the header)" if line else ""
+        raise ValueError(f"{p}: not a tab-separated table with the columns {expected}{where}") from None
     return validate_mooring_systems(df, source=str(p))

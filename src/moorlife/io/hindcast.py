@@ -23,6 +23,12 @@ wind       ``wind_speed_<h>m`` + ``wind_direction_<h>m`` (NORA3), ``u<h>`` + ``v
            ``hindcast.measured_height``)
 ========== =====================================================================
 
+Timestamps with a UTC offset (``...Z``, ``+01:00``, daylight-saving offsets that change within
+the file) are converted to UTC; timestamps without one are taken as UTC; a file mixing both is
+refused. A byte-order mark before the ``#`` lines is ignored. Physically impossible sea states
+(beyond the breaking steepness, Tp under 1 s: :mod:`moorlife.cleaning`) are refused, or dropped
+or clipped (``sea_states``), and a constant Hs, Tp or wind speed is refused.
+
 ``hindcast.columns`` maps any other naming (keys ``hs``, ``tp``, ``wave_dir``, ``wind_speed``,
 ``wind_dir``, ``wind_u``, ``wind_v``). When several wind heights exist, the one nearest the
 hub height is used and lifted to it with the power law.
@@ -47,6 +53,14 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from moorlife.cleaning import (
+    BREAKING_STEEPNESS,
+    SEA_STATE_POLICIES,
+    TP_FLOOR,
+    check_sea_states,
+    clipped_tp,
+    constant_columns,
+)
 from moorlife.metocean import (
     WAVE_VARS,
     WIND_VARS,
@@ -65,6 +79,7 @@ __all__ = [
     "read_table",
     "plan_columns",
     "read_hindcast",
+    "period_bounds",
 ]
 
 log = logging.getLogger("moorlife.io.hindcast")
@@ -117,16 +132,38 @@ def _header_position(lines: list[str]) -> tuple[float | None, float | None]:
 
 def _read_csv(path: Path) -> tuple[pd.DataFrame, np.ndarray, dict[str, Any]]:
     header: list[str] = []
-    with path.open("r", encoding="utf-8", errors="replace") as fh:
-        for line in fh:
-            if line.startswith("#"):
-                header.append(line.rstrip("\n"))
-            else:
-                break
+    columns: list[str] | None = None
     try:
-        df = pd.read_csv(path, skiprows=len(header), skip_blank_lines=False, dtype={"time": str})
+        # utf-8-sig: a byte-order mark before the first '#' line is not part of the text
+        with path.open("r", encoding="utf-8-sig") as fh:
+            for line in fh:
+                if line.startswith("#"):
+                    header.append(line.rstrip("\r\n"))
+                else:
+                    columns = [c.strip() for c in line.rstrip("\r\n").split(",")]
+                    break
+    except UnicodeDecodeError:
+        raise HindcastError(
+            f"{path}: not a CSV text file (not UTF-8 text); give a CSV, NetCDF or Zarr hindcast "
+            "(hindcast.format)"
+        ) from None
+    if columns is not None:
+        dup = sorted({c for c in columns if c and columns.count(c) > 1})
+        if dup:
+            raise HindcastError(f"{path}: duplicated column name(s) {dup} in the header row; each column must be named once")
+    try:
+        df = pd.read_csv(path, skiprows=len(header), skip_blank_lines=False, dtype={"time": str}, encoding="utf-8-sig")
     except pd.errors.EmptyDataError as exc:
         raise HindcastError(f"{path}: the file is empty (no header row, no data)") from exc
+    except pd.errors.ParserError as exc:
+        m = re.search(r"Expected (\d+) fields in line (\d+), saw (\d+)", str(exc))
+        if m:
+            line = int(m.group(2))  # pandas counts the skipped header lines too
+            raise HindcastError(
+                f"{path}: line {line} has {m.group(3)} comma-separated fields, the header row {m.group(1)} "
+                "(a ragged row: a missing or extra comma)"
+            ) from None
+        raise HindcastError(f"{path}: not a comma-separated table (the CSV parser gave up); check the file") from None
     df.columns = [str(c).strip() for c in df.columns]
     lon, lat = _header_position(header)
     meta = {"header": header, "lon": lon, "lat": lat, "row_kind": "line"}
@@ -212,7 +249,13 @@ def read_table(
     if fmt == "csv":
         df, rows, meta = _read_csv(p)
         if "time" not in df.columns:
-            raise HindcastError(f"{p}: missing column 'time' (columns: {list(df.columns)})")
+            # the header is not echoed: a wrong path may name a file with secrets in it
+            raise HindcastError(
+                f"{p}: missing column 'time': expected a header row with a 'time' column and the wave and "
+                f"wind columns (e.g. time, hs, tp, Pdir, wind_speed_100m, wind_direction_100m; see "
+                f"moorlife.io.hindcast), after any '#' header lines; the file's header has {len(df.columns)} "
+                "field(s), none of them 'time'"
+            )
     elif fmt in ("netcdf", "zarr"):
         df, rows, meta = _read_xarray(p, fmt, lon, lat)
     else:
@@ -325,6 +368,113 @@ def _is_nora3(meta: Mapping[str, Any], columns: list[str]) -> bool:
     return any("NORA3" in h.upper() for h in meta.get("header", [])) or {"thq", "Pdir", "hs_swell"} <= set(columns)
 
 
+# ------------------------------------------------------------------------------------ checks
+#: a UTC offset after the time of day (a date alone, 2000-01-01, ends in "-01" but has none)
+_TZ = re.compile(r"\d{2}:\d{2}(?::\d{2}(?:\.\d+)?)?\s*(?:Z|UTC|GMT|[+-]\d{2}(?::?\d{2})?)$", re.I)
+
+
+def period_bounds(start: Any, end: Any) -> tuple[pd.Timestamp, pd.Timestamp]:
+    """``hindcast.start`` and ``hindcast.end`` as naive UTC timestamps, naming the key when unreadable."""
+    out = []
+    for key, value in (("start", start), ("end", end)):
+        try:
+            t = pd.Timestamp(value)
+        except (ValueError, TypeError):
+            raise HindcastError(
+                f"config key 'hindcast.{key}' = {value!r} is not an ISO 8601 time (e.g. '2000-01-01T00:00')"
+            ) from None
+        if t is pd.NaT:
+            raise HindcastError(f"config key 'hindcast.{key}' = {value!r} is not an ISO 8601 time")
+        if t.tzinfo is not None:
+            t = t.tz_convert("UTC").tz_localize(None)
+        out.append(t)
+    return out[0], out[1]
+
+
+def _utc_times(col: pd.Series, p: Path, rows: np.ndarray) -> pd.Series:
+    """Timestamps with a UTC offset converted to naive UTC (ISO text); others unchanged.
+
+    Unparsable values are kept as they are, for the validation to name.
+    """
+    if pd.api.types.is_datetime64_any_dtype(col.dtype):
+        if getattr(col.dt, "tz", None) is not None:
+            return col.dt.tz_convert("UTC").dt.tz_localize(None)
+        return col
+    text = col.astype(str).str.strip()
+    aware = text.str.contains(_TZ) & col.notna().to_numpy()
+    if not aware.any():
+        return col
+    naive = ~aware & col.notna() & (text != "")
+    if naive.any():
+        i, j = int(np.flatnonzero(aware.to_numpy())[0]), int(np.flatnonzero(naive.to_numpy())[0])
+        raise HindcastError(
+            f"{p}: column 'time' mixes timestamps with a UTC offset (row {rows[i]}: {text.iloc[i]!r}) and without "
+            f"one (row {rows[j]}: {text.iloc[j]!r}); give every timestamp in UTC"
+        )
+    parsed = pd.to_datetime(text, utc=True, errors="coerce", format="mixed")
+    out = col.astype(object).copy()
+    ok = parsed.notna().to_numpy()
+    out[ok] = parsed[ok].dt.tz_localize(None).dt.strftime("%Y-%m-%dT%H:%M:%S").to_numpy()
+    log.info("%s: column 'time': %d timestamp(s) with a UTC offset converted to UTC", p, int(ok.sum()))
+    return out
+
+
+def _refuse_infinite(std: pd.DataFrame, labels: Mapping[str, str], p: Path, rows: np.ndarray) -> None:
+    """Infinite values are not gaps and would survive the cleaning (a wrapped inf is NaN)."""
+    for v in std.columns:
+        if v == "time":
+            continue
+        x = pd.to_numeric(pd.Series(std[v]), errors="coerce").to_numpy(dtype=float)
+        inf = np.isinf(x)
+        if inf.any():
+            i = int(np.flatnonzero(inf)[0])
+            raise HindcastError(
+                f"{p}: column '{labels.get(v, v)}' (variable {v}), row {rows[i]}: value {x[i]:g} is not finite "
+                f"({int(inf.sum())} such row(s))"
+            )
+
+
+def _apply_sea_state_policy(
+    std: pd.DataFrame, labels: Mapping[str, str], p: Path, rows: np.ndarray, policy: str,
+    cleaning: CleaningPolicy | None,
+) -> pd.DataFrame:
+    """Refuse, drop (make gaps of) or clip the sea states beyond the breaking steepness or the Tp floor."""
+    if policy not in SEA_STATE_POLICIES:
+        raise HindcastError(f"hindcast.cleaning.sea_states = {policy!r}: expected one of {list(SEA_STATE_POLICIES)}")
+    hs = pd.to_numeric(pd.Series(std["hs"]), errors="coerce").to_numpy(dtype=float)
+    tp = pd.to_numeric(pd.Series(std["tp"]), errors="coerce").to_numpy(dtype=float)
+    lim = getattr(cleaning, "limits", None)
+    with np.errstate(invalid="ignore"):  # values beyond the unit limits: the validation names them
+        units = (hs > getattr(lim, "hs_max", np.inf)) | (tp > getattr(lim, "tp_max", np.inf))
+    rep = check_sea_states(np.where(units, np.nan, hs), tp)
+    bad = np.flatnonzero(rep.bad)
+    if bad.size == 0:
+        return std
+    where = f"columns '{labels.get('hs', 'hs')}'/'{labels.get('tp', 'tp')}'"
+    if policy == "error":
+        i = int(bad[0])
+        raise HindcastError(
+            f"{p}: {where}, row {rows[i]} (time {std['time'].iloc[i]}): hs = {hs[i]:g} m, tp = {tp[i]:g} s is not "
+            f"a possible sea state: {rep.reason(i)} ({bad.size} such row(s); Tp floor {TP_FLOOR:g} s, "
+            f"breaking steepness 1/{1 / BREAKING_STEEPNESS:g}; set hindcast.cleaning.sea_states: drop or clip)"
+        )
+    out = std.copy()
+    if policy == "drop":
+        for i in bad:
+            log.warning("%s: row %s (time %s): dropped hs = %g m, tp = %g s (%s); the hour becomes a gap",
+                        p, rows[i], std["time"].iloc[i], hs[i], tp[i], rep.reason(int(i)))
+        out["hs"] = np.where(rep.bad, np.nan, hs)
+        out["tp"] = np.where(rep.bad, np.nan, tp)
+        return out
+    new_tp = clipped_tp(hs, tp)
+    for i in bad:
+        log.warning("%s: row %s (time %s): clipped tp %g -> %.4g s for hs = %g m (%s)",
+                    p, rows[i], std["time"].iloc[i], tp[i], new_tp[i], hs[i], rep.reason(int(i)))
+    keep_raw = ~rep.bad  # leave the untouched cells as they were (their own checks name them)
+    out["tp"] = np.where(keep_raw, std["tp"].to_numpy(dtype=object), new_tp)
+    return out
+
+
 # -------------------------------------------------------------------------------------- public
 def read_hindcast(
     path: str | os.PathLike[str],
@@ -338,11 +488,13 @@ def read_hindcast(
     measured_height: float | None = None,
     wave_dir_convention: str = "auto",
     cleaning: CleaningPolicy | None = None,
+    sea_states: str | None = None,
     site: str = "",
     lon: float | None = None,
     lat: float | None = None,
     base_dir: str | os.PathLike[str] = ".",
     require_wind: bool = True,
+    require_varying: bool = True,
 ) -> xr.Dataset:
     """Load a hindcast file as the contract Dataset over ``start``..``end``.
 
@@ -364,11 +516,22 @@ def read_hindcast(
         NORA3 files, else "from".
     cleaning : CleaningPolicy, optional
         What to do with gaps, duplicates, unsorted rows and out-of-range directions.
+    sea_states : {"error", "drop", "clip"}, optional
+        What to do with physically impossible sea states (beyond the breaking steepness or below
+        the Tp floor, :mod:`moorlife.cleaning`); default ``cleaning.sea_states`` if the policy has
+        it, else "error". Every row dropped or clipped is logged.
     site, lon, lat :
         The configured site; ``lon``/``lat`` pick the grid point of gridded files and are
         replaced by the file's position when it states one.
     require_wind : bool
         Raise when the file has no wind (the 5-D selection needs it); if False, return waves only.
+    require_varying : bool
+        Raise when Hs, Tp or the wind speed is constant over the period (the selection and the
+        RBF need each to vary); only with ``require_wind``.
+
+    Timestamps with a UTC offset (``2000-01-01T00:00Z``, ``+01:00``, mixed daylight-saving
+    offsets) are converted to UTC; timestamps without one are read as UTC. A file mixing both
+    is refused.
 
     Raises
     ------
@@ -392,8 +555,9 @@ def read_hindcast(
             "hindcast.columns and hindcast.measured_height"
         )
 
+    df = df.assign(time=_utc_times(df["time"], p, rows))
     times = pd.to_datetime(df["time"], errors="coerce")
-    t0, t1 = pd.Timestamp(start), pd.Timestamp(end)
+    t0, t1 = period_bounds(start, end)
     valid = times.dropna()
     if valid.empty:
         raise HindcastError(f"{p}: column 'time': no parsable timestamp (first value {df['time'].iloc[0]!r})")
@@ -425,9 +589,22 @@ def read_hindcast(
             std["wind_speed"], std["wind_dir"] = sub[w.first].to_numpy(), sub[w.second].to_numpy()
             labels["wind_speed"], labels["wind_dir"] = w.first, w.second
     require = WAVE_VARS + (WIND_VARS if plan.wind is not None else ())
+    _refuse_infinite(std, labels, p, rows[keep])
+    policy = sea_states if sea_states is not None else getattr(cleaning, "sea_states", "error")
+    std = _apply_sea_state_policy(std, labels, p, rows[keep], policy, cleaning or CleaningPolicy())
     clean = validate_hindcast(
         std, source=str(p), policy=cleaning, labels=labels, rows=rows[keep], require=require, period=(t0, t1)
     )
+    # the scalar coordinates of the 5-D selection (a constant direction is harmless: its scale is fixed)
+    const = constant_columns({v: clean[v].to_numpy() for v in ("hs", "tp", "wind_speed") if v in clean})
+    if const and require_wind and require_varying:
+        v = const[0]
+        raise HindcastError(
+            f"{p}: column '{labels.get(v, v)}' (variable {v}) is constant, {float(clean[v].iloc[0]):g}, over "
+            f"the study period {t0} .. {t1}: Hs, Tp and the wind speed must vary (the selection "
+            "normalises each by its range and the RBF reconstruction cannot fit a constant coordinate); "
+            "check the file's column, or hindcast.columns"
+        )
 
     convention = wave_dir_convention
     if convention == "auto":
