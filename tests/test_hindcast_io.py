@@ -422,7 +422,7 @@ def test_impossible_sea_states_refused_dropped_or_clipped(tmp_path, caplog):
         load(p, sea_states="drop")
     caplog.clear()
     with caplog.at_level(logging.WARNING, logger="moorlife.io.hindcast"):
-        ds = load(p, sea_states="drop", cleaning=CleaningPolicy(max_gap_hours=1))
+        ds = load(p, sea_states="drop", cleaning=CleaningPolicy.from_config({"max_gap_hours": 1}))
     assert sum("dropped" in r.getMessage() for r in caplog.records) == 2
     np.testing.assert_allclose(ds["tp"][5], 0.5 * (df["tp"][4] + df["tp"][6]))
     np.testing.assert_allclose(ds["hs"][9], 0.5 * (df["hs"][8] + df["hs"][10]))

@@ -328,14 +328,15 @@ def test_build_hindcast_contract_roundtrip(config, tmp_path, caplog):
 def test_build_hindcast_file_source_dispatch(config, tmp_path):
     t = pd.date_range("2001-01-01", periods=48, freq="h")
     df = pd.DataFrame(
-        {"time": t.strftime("%Y-%m-%d %H:%M:%S"), "hs": 1.0, "tp": 9.0, "mwd": 300.0, "u10": -5.0, "v10": 0.0}
-    )
+        {"time": t.strftime("%Y-%m-%d %H:%M:%S"), "hs": 1.0 + 0.01 * np.arange(48), "tp": 9.0 + 0.01 * np.arange(48),
+         "mwd": 300.0, "u10": -5.0 - 0.01 * np.arange(48), "v10": 0.0}
+    )  # varying Hs, Tp and wind speed: a constant coordinate is refused
     (tmp_path / "h.csv").write_text("#ERA5,LONGITUDE:-2.9,LATITUDE:43.6,\n" + df.to_csv(index=False))
     h = dict(config["hindcast"], source="file", path="h.csv", start="2001-01-01T06:00", end="2001-01-01T23:00")
     ds = mo.build_hindcast(h, SEED, base_dir=str(tmp_path))
     assert ds.sizes["time"] == 18
     np.testing.assert_allclose(ds["wind_dir"], 90.0)  # u = -5: blowing west, from the east
-    np.testing.assert_allclose(ds["wind_speed"], 5.0 * 9.0**0.14)
+    np.testing.assert_allclose(ds["wind_speed"], (5.0 + 0.01 * np.arange(6, 24)) * 9.0**0.14)
     with pytest.raises(mo.HindcastError, match="hindcast.path"):
         mo.build_hindcast(dict(h, path=None), SEED)
 

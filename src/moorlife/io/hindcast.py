@@ -591,7 +591,7 @@ def read_hindcast(
     require = WAVE_VARS + (WIND_VARS if plan.wind is not None else ())
     _refuse_infinite(std, labels, p, rows[keep])
     policy = sea_states if sea_states is not None else getattr(cleaning, "sea_states", "error")
-    std = _apply_sea_state_policy(std, labels, p, rows[keep], policy, cleaning or CleaningPolicy())
+    std = _apply_sea_state_policy(std, labels, p, rows[keep], policy, cleaning or CleaningPolicy.from_config({}))
     clean = validate_hindcast(
         std, source=str(p), policy=cleaning, labels=labels, rows=rows[keep], require=require, period=(t0, t1)
     )

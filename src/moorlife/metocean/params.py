@@ -185,6 +185,9 @@ class CleaningPolicy(_Record):
     wrap_directions : bool
         Directions outside ``[0, 360]`` are wrapped modulo 360 instead of raising (exactly 360
         is always read as north, 0, and logged).
+    sea_states : {"error", "drop", "clip"}
+        Physically impossible sea states (beyond the breaking steepness or below the Tp floor of
+        :mod:`moorlife.cleaning`): raise, turn them into gaps, or raise Tp to the limit.
     limits : PlausibleLimits
         Plausibility limits catching wrong units.
     """
@@ -195,6 +198,7 @@ class CleaningPolicy(_Record):
     duplicates: str
     unsorted: str
     wrap_directions: bool
+    sea_states: str
     limits: PlausibleLimits
 
 
