@@ -6,7 +6,7 @@ BIN    := $(VENV)/bin
 CORES  ?= 2
 STAMP  := $(VENV)/.moorlife-installed
 
-.PHONY: run quick test bench report lint clean-results
+.PHONY: run quick test test-cluster bench report lint clean-results
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -30,6 +30,13 @@ quick: $(STAMP)
 ## test: the whole test suite (unit, peer and workflow tests)
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
+
+## test-cluster: the tiny workflow by both SLURM routes (the profile; a dask-jobqueue cluster),
+## compared bit for bit with a local run; starts a one-node SLURM cluster if none answers
+## (.ci/slurm.sh, root, Debian) and installs the cluster extra
+test-cluster: $(STAMP)
+	$(BIN)/python -m pip install --quiet -c constraints.txt -e ".[test,cluster]"
+	bash .ci/test_cluster.sh $(BIN)
 
 ## bench: peer-library benchmarks (installs the bench extra)
 bench: $(STAMP)

@@ -36,7 +36,8 @@ def test_conda_env_mirrors_pyproject(project):
 def test_every_dependency_bounded_and_pinned(project):
     pins = {_name(l): l.split("==")[1].strip() for l in (ROOT / "constraints.txt").read_text().splitlines()
             if "==" in l}
-    for req in project["dependencies"] + project["optional-dependencies"]["test"]:
+    extras = project["optional-dependencies"]
+    for req in project["dependencies"] + extras["test"] + extras["cluster"]:
         assert "<" in req, f"{req}: upper bound missing"
         assert _name(req) in pins, f"{req}: not pinned in constraints.txt"
 

@@ -176,3 +176,34 @@ def test_one_worker_equals_two_workers(study, tmp_path):
     target = "results/MS3/simulations.zarr"
     smk(work, "--forcerun", target, target, cores=1)
     xr.testing.assert_identical(mio.open_zarr(work / target).drop_attrs(), mio.open_zarr(study / target).drop_attrs())
+
+
+def test_unlock_needs_no_cores(tmp_path):
+    """`snakemake --unlock` as the README writes it: no --cores (threads sized by all_cores())."""
+    work = copy_repo(tmp_path)
+    env = {**os.environ, "PYTHONWARNINGS": "ignore"}
+    res = subprocess.run([SNAKEMAKE, "--unlock", "--configfile", *OVERLAYS], cwd=work, capture_output=True,
+                         text=True, timeout=300, env=env)
+    assert res.returncode == 0, res.stderr[-3000:]
+    assert "Unlocked working directory" in res.stdout + res.stderr
+
+
+def test_report_opens_on_the_answer(study, tmp_path):
+    """The report's global description carries the recommendation and the tables of this run."""
+    html_path = tmp_path / "report.html"
+    smk(study, "--report", str(html_path))
+    html = html_path.read_text(encoding="utf-8")
+    rec = mio.read_yaml(study / "results" / "comparison" / "recommendation.yaml")
+    answer = (f"Recommended mooring system: {rec['recommended']}" if rec["recommended"]
+              else "No mooring system passes")
+    assert answer in html
+    for heading in ("Life-cycle fatigue per mooring system, line and curve",
+                    "Matrix vs life-cycle damage, mean difference (%)", "The answer"):
+        assert heading in html, heading
+    assert "has not run yet" not in html
+    # the numbers are this run's: every row of summary.csv, by its life-cycle damage
+    summary = (study / "results" / "comparison" / "summary.csv").read_text().splitlines()
+    header = summary[0].split(",")
+    col = header.index("lifecycle_damage")
+    for line in summary[1:]:
+        assert f"{float(line.split(',')[col]):.3g}" in html, line

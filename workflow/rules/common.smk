@@ -1,6 +1,8 @@
 # Helpers shared by every stage: config validation, the mooring-system table, targets.
 import os
 
+from snakemake.exceptions import WorkflowError
+
 from moorlife.config import check_against_table, validate_config
 from moorlife.hydro import bem_settings
 from moorlife.io.platform import read_platform_config
@@ -16,6 +18,20 @@ config.update(
 MOORING = read_mooring_systems(config["mooring_systems"])
 MS_IDS = list(MOORING.index)
 check_against_table(config, MS_IDS, _cfg_sources, dict(MOORING["link_diameter_mm"]))
+
+
+def all_cores():
+    """The run's ``--cores``, for the rules that use every core of their job.
+
+    ``workflow.cores`` raises "Workflow requires a total number of cores" when the run has no
+    ``--cores``: ``snakemake --unlock``, ``--report``, and a cluster executor given ``--jobs``
+    only. Those get 1 (nothing runs under ``--unlock``; the SLURM profile sizes these rules with
+    ``set-threads``, which overrides this value).
+    """
+    try:
+        return workflow.cores
+    except WorkflowError:
+        return 1
 
 
 def mooring_row(ms):
@@ -55,6 +71,7 @@ def final_targets():
         rules.hydro,
         rules.compare,
         rules.compare_figures,
+        rules.report_overview,
     )
     if config["lifecycle"]["sensitivity"]["mooring_system"] in MS_IDS:
         shared += _outputs(rules.sensitivity)

@@ -101,7 +101,7 @@ rule sensitivity_seeds:
         mooring=config.get("mooring", {}),
         fatigue=config["fatigue"],
         statistics=config.get("statistics", {}),
-    threads: workflow.cores
+    threads: all_cores()
     conda:
         "../../envs/moorlife.yaml"
     log:

@@ -19,7 +19,7 @@ rule simulate_cases:
         mooring=config.get("mooring", {}),
         fatigue=config["fatigue"],
         statistics=config.get("statistics", {}),
-    threads: workflow.cores
+    threads: all_cores()
     conda:
         "../../envs/moorlife.yaml"
     log:
@@ -44,7 +44,7 @@ rule simulate_discrete:
         mooring=config.get("mooring", {}),
         fatigue=config["fatigue"],
         statistics=config.get("statistics", {}),
-    threads: workflow.cores
+    threads: all_cores()
     conda:
         "../../envs/moorlife.yaml"
     log:
