@@ -99,12 +99,13 @@ def result_settings(config: Mapping[str, Any], section: str) -> dict[str, Any]:
 
 
 @contextlib.contextmanager
-def logged(log: str | os.PathLike[str] | None) -> Iterator[logging.Logger]:
-    """The rule's log (:func:`moorlife.io.log_to`) when ``log`` is a path, else the ``moorlife`` logger."""
+def logged(log: str | os.PathLike[str] | None, name: str = "moorlife.stages") -> Iterator[logging.Logger]:
+    """The logger ``name`` (a child of ``moorlife``), sent to the rule's log file when ``log`` is
+    a path (:func:`moorlife.io.log_to`: also BLAS limited to one thread inside the block)."""
     if log is None:
-        yield logging.getLogger("moorlife")
+        yield logging.getLogger(name)
         return
     from moorlife.io import log_to
 
-    with log_to(log) as logger:
-        yield logger
+    with log_to(log):
+        yield logging.getLogger(name)

@@ -73,7 +73,7 @@ def run(
     """
     if seeds is not None and not isinstance(seeds, (str, os.PathLike)):
         seeds = (list(seeds) or [None])[0]
-    with logged(log):
+    with logged(log, __name__):
         mooring = read_mooring_systems(mooring_systems)
         states = open_zarr(bins)
         lcs, dds = {}, {}
@@ -135,7 +135,7 @@ def figures(
     """
     from moorlife.plots import lifecycle as plots
 
-    with logged(log):
+    with logged(log, __name__):
         table = read_csv_table(summary)
         rec = read_yaml(recommendation)
         dists = {}

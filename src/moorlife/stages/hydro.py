@@ -41,7 +41,7 @@ def run(
         The rule's log file.
     """
     env = bem["environment"]
-    with logged(log):
+    with logged(log, __name__):
         if bem["source"] == "wamit":
             ds = read_wamit_dataset(bem["wamit_prefix"], rho=env["rho_water"], g=env["gravity"],
                                     water_depth=env["water_depth"])

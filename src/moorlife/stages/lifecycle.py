@@ -53,7 +53,7 @@ def run(
     """
     import numba
 
-    with logged(log) as logger:
+    with logged(log, __name__) as logger:
         if threads:
             numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
         rbf_cfg = dict(lifecycle.get("rbf") or {})
@@ -100,7 +100,7 @@ def figures(
     """
     from moorlife.plots import lifecycle as plots
 
-    with logged(log):
+    with logged(log, __name__):
         ds = open_zarr(lifecycle)
         save_figure(plots.validation_scatter(ds, title=ms), validation)
         save_figure(plots.loo_error_map(ds, title=ms), loo_map)

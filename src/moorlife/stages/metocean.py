@@ -101,7 +101,7 @@ def run(
     log : path-like, optional
         The rule's log file.
     """
-    with logged(log):
+    with logged(log, __name__):
         ds = build_hindcast(dict(hindcast), int(seed), base_dir=base_dir)
         write_zarr(ds, store)
         return ds
@@ -131,7 +131,7 @@ def figures(
     matplotlib.use("Agg")
     from moorlife.plots.metocean import plot_hs_tp, plot_wave_rose, plot_wind_rose
 
-    with logged(log):
+    with logged(log, __name__):
         ds = open_zarr(hindcast)
         save_figure(plot_wind_rose(ds), wind_rose)
         save_figure(plot_wave_rose(ds), wave_rose)

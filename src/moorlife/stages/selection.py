@@ -45,7 +45,7 @@ def run(
     log : path-like, optional
         The rule's log file.
     """
-    with logged(log):
+    with logged(log, __name__):
         hc = open_zarr(hindcast)
         cases = selection.select_cases(hc, n_train=n_train, n_validate=n_validate, rule=rule, seed=seed,
                                        source=str(hindcast))
@@ -78,7 +78,7 @@ def discrete(
     log : path-like, optional
         The rule's log file.
     """
-    with logged(log):
+    with logged(log, __name__):
         hc = open_zarr(hindcast)
         ds = selection.discrete_states(hc, hs_edges=hs_edges, wind_edges=wind_edges, tp_edges=tp_edges,
                                        sector=sector, source=str(hindcast))
@@ -108,7 +108,7 @@ def figures(
     """
     from moorlife.plots.selection import plot_discrete_states, plot_selection_cloud
 
-    with logged(log):
+    with logged(log, __name__):
         hc = open_zarr(hindcast)
         save_figure(plot_selection_cloud(hc, open_zarr(cases)), cloud_fig)
         save_figure(plot_discrete_states(hc, open_zarr(discrete)), discrete_fig)

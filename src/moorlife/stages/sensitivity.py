@@ -45,7 +45,7 @@ def cases(
     log : path-like, optional
         The rule's log file.
     """
-    with logged(log):
+    with logged(log, __name__):
         ids = np.arange(int(n_seeds), dtype=np.int64) + int(case_offset)
         ds = xr.Dataset(
             {v: ("case", np.full(ids.size, float(sea_state[v])), names.attrs_for(v)) for v in names.METOCEAN_VARS},
@@ -104,7 +104,7 @@ def run(
     """
     from moorlife.plots import lifecycle as plots
 
-    with logged(log):
+    with logged(log, __name__):
         fs = fatigue_mod.fatigue_settings(fatigue)
         mooring = read_mooring_systems(mooring_systems)
         sd = open_zarr(seeds)

@@ -109,7 +109,7 @@ def run(
     """
     sim_cfg = scheduling_free("simulation", simulation)
     bs = int(batch_size if batch_size is not None else dict(simulation).get("batch_size", 8))
-    with logged(log) as logger:
+    with logged(log, __name__) as logger:
         cs = open_zarr(cases)
         if dim not in cs.dims:
             raise ValueError(f"{cases}: expected a dimension {dim!r}, found {tuple(cs.dims)}")
