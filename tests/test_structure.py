@@ -11,6 +11,7 @@ function-level imports both count), so a lazy import cannot hide a cycle.
 from __future__ import annotations
 
 import ast
+import itertools
 from pathlib import Path
 
 import pytest
@@ -138,7 +139,7 @@ def test_no_import_cycles():
     graph = _without_pending(import_graph())
     cycle = find_cycle(graph)
     if cycle:
-        where = [f"{a} -> {b} (line {graph[a][b]})" for a, b in zip(cycle, cycle[1:])]
+        where = [f"{a} -> {b} (line {graph[a][b]})" for a, b in itertools.pairwise(cycle)]
         pytest.fail("import cycle: " + "; ".join(where))
 
 

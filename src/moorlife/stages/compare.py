@@ -15,7 +15,15 @@ import pandas as pd
 from moorlife import fatigue as fatigue_mod
 from moorlife import lifecycle as lc_mod
 from moorlife import names
-from moorlife.io import open_zarr, read_csv_table, read_mooring_systems, read_yaml, save_figure, write_csv, write_yaml
+from moorlife.io import (
+    open_zarr,
+    read_csv_table,
+    read_mooring_systems,
+    read_yaml,
+    save_figure,
+    write_csv,
+    write_yaml,
+)
 from moorlife.stages import logged
 
 __all__ = ["run", "figures"]

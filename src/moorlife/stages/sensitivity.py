@@ -14,7 +14,13 @@ import xarray as xr
 from moorlife import fatigue as fatigue_mod
 from moorlife import lifecycle as lc_mod
 from moorlife import names
-from moorlife.io import open_zarr, read_mooring_systems, save_figure, write_csv, write_zarr
+from moorlife.io import (
+    open_zarr,
+    read_mooring_systems,
+    save_figure,
+    write_csv,
+    write_zarr,
+)
 from moorlife.stages import logged
 
 __all__ = ["cases", "run"]
