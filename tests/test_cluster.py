@@ -16,6 +16,7 @@ import xarray as xr
 
 from moorlife import io as mio
 from moorlife import parallel
+from moorlife.stages.fanout import map_cases
 
 HERE = Path(__file__).resolve().parent
 BIN = Path(sys.executable).parent
@@ -88,11 +89,11 @@ def external_cluster(tmp_path):
 def test_external_scheduler_matches_local_cluster(tmp_path, cases, external_cluster, monkeypatch):
     addr, procs = external_cluster
     local = tmp_path / "local" / "results" / "sim.zarr"
-    parallel.map_cases(slow_case, cases, local, dim="case", func_kwargs={"scale": 2.0},
+    map_cases(slow_case, cases, local, dim="case", func_kwargs={"scale": 2.0},
                        batch_size=3, fingerprint="f", threads=1)
     monkeypatch.setenv(parallel.SCHEDULER_ENV, addr)
     remote = tmp_path / "remote" / "results" / "sim.zarr"
-    parallel.map_cases(slow_case, cases, remote, dim="case", func_kwargs={"scale": 2.0},
+    map_cases(slow_case, cases, remote, dim="case", func_kwargs={"scale": 2.0},
                        batch_size=3, fingerprint="f", threads=1)
     a, b = mio.open_zarr(local), mio.open_zarr(remote)
     worker_pids = {p.pid for p in procs[1:]}
@@ -117,7 +118,7 @@ def test_worker_killed_mid_run_is_rescheduled(tmp_path, cases, external_cluster,
 
     killer = threading.Thread(target=kill_when_started)
     killer.start()
-    ds = parallel.map_cases(slow_case, cases, out, dim="case", func_kwargs={"scale": 2.0, "pause": 0.4},
+    ds = map_cases(slow_case, cases, out, dim="case", func_kwargs={"scale": 2.0, "pause": 0.4},
                             batch_size=2, fingerprint="k", threads=1)
     killer.join()
     assert victim.poll() is not None, "the victim worker should be dead"

@@ -8,7 +8,7 @@ import pandas as pd
 import pytest
 
 from moorlife.config import ConfigError, deep_merge, fingerprint, iter_schema_leaves, undocumented_keys, validate_config
-from moorlife.io import read_mooring_systems, read_study_config, read_yaml
+from moorlife.io import read_mooring_systems, read_yaml
 from moorlife.tables import validate_mooring_systems
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -53,9 +53,9 @@ def test_config_values_equal_schema_defaults(schema, config):
         assert sub["default"] == value, f"{key}: schema default {sub['default']!r} != config.yaml {value!r}"
 
 
-def test_config_and_quick_overlay_validate():
-    full = read_study_config(CONFIG, schema=SCHEMA)
-    quick = read_study_config(CONFIG, (ROOT / "config" / "quick.yaml",), schema=SCHEMA)
+def test_config_and_quick_overlay_validate(study_config, quick_config, tiny_config):
+    full, quick = study_config, quick_config
+    assert tiny_config["selection"]["n_train"] <= quick["selection"]["n_train"]
     assert full["selection"]["n_train"] == 1000 and full["selection"]["n_validate"] == 225
     assert quick["selection"]["n_train"] < full["selection"]["n_train"]
     assert full["hindcast"]["start"].startswith("1985") and full["hindcast"]["end"].startswith("2015")

@@ -419,10 +419,8 @@ def test_excitation_at_symmetry(model):
 
 # --------------------------------------------------------------- the hydro rule's params
 
-def test_bem_settings_change_only_with_bem_inputs(platform_cfg):
-    from moorlife.io import read_study_config
-
-    cfg = read_study_config(ROOT / "config/config.yaml", schema=ROOT / "workflow/schemas/config.schema.yaml")
+def test_bem_settings_change_only_with_bem_inputs(platform_cfg, study_config):
+    cfg = study_config
     base = hydro.bem_settings(cfg["hydro"], platform_cfg)
     other_ct = {**platform_cfg, "turbine": {**platform_cfg["turbine"], "ct_table": {"wind_speed": [3, 25], "ct": [1, 0.1]}}}
     assert hydro.bem_settings(cfg["hydro"], other_ct) == base  # the Ct table does not rerun the BEM
@@ -439,14 +437,11 @@ def test_bem_settings_change_only_with_bem_inputs(platform_cfg):
 
 
 @pytest.mark.slow
-def test_coarse_bem_reproduces_fixture(platform_cfg):
+def test_coarse_bem_reproduces_fixture(platform_cfg, quick_config):
     """The coarse setting reruns in seconds and reproduces the committed fixture at the shared
     grid points (0.05 and 2.5 rad/s; headings 0 and 180 deg): determinism + fixture freshness.
     (Threaded LAPACK in the BEM solve leaves ~1e-4 relative noise on the smallest terms.)"""
-    from moorlife.io import read_study_config
-
-    cfg = read_study_config(ROOT / "config/config.yaml", (ROOT / "config/quick.yaml",),
-                            schema=ROOT / "workflow/schemas/config.schema.yaml")
+    cfg = quick_config
     s = hydro.bem_settings(cfg["hydro"], platform_cfg)
     s["omega"] = {"min": 0.05, "max": 2.5, "n": 2}
     s["heading_step"] = 180.0
@@ -476,7 +471,7 @@ def test_richardson_recovers_linear_limit():
 
 
 @pytest.mark.slow
-def test_bem_identical_whatever_the_worker_count(platform_cfg):
+def test_bem_identical_whatever_the_worker_count(platform_cfg, quick_config):
     """1 or 2 jobs give the same coefficients: each frequency is one single-threaded unit in a
     fresh spawned process, and the results are assembled by frequency index.
 
@@ -486,10 +481,7 @@ def test_bem_identical_whatever_the_worker_count(platform_cfg):
     found; isolated reruns agree). The bound, 1e-3 of each array's peak, is 4x above that and
     still catches what this guards against (frequencies or problems assembled in the wrong
     order, a worker's result lost): those are O(1) errors."""
-    from moorlife.io import read_study_config
-
-    cfg = read_study_config(ROOT / "config/config.yaml", (ROOT / "config/quick.yaml",),
-                            schema=ROOT / "workflow/schemas/config.schema.yaml")
+    cfg = quick_config
     s = hydro.bem_settings(cfg["hydro"], platform_cfg)
     s["omega"] = {"min": 0.3, "max": 0.9, "n": 2}
     s["heading_step"] = 180.0

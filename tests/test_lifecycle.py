@@ -248,8 +248,10 @@ def test_stores_comparison_and_sensitivity_end_to_end(tmp_path):
     """The io layer on tiny synthetic stores: lifecycle.zarr, summary.csv, recommendation, figures."""
     import yaml
 
-    from moorlife.io import lifecycle as iol
     from moorlife.io import open_zarr, write_zarr
+    from moorlife.stages import compare as st_compare
+    from moorlife.stages import lifecycle as st_lifecycle
+    from moorlife.stages import sensitivity as st_sensitivity
 
     hc = _hindcast(1500, seed=8)
     cases = _cases(hc, 50, 10, seed=9)
@@ -270,18 +272,19 @@ def test_stores_comparison_and_sensitivity_end_to_end(tmp_path):
         d = xr.Dataset({v: (("bin", "line"), np.full((2, 3), 1e-6 / 10 ** (2 * k))) for v in ("damage_sn", "damage_tn")},
                        coords={"bin": [0, 1], "line": LINES})
         write_zarr(d, tmp_path / f"{ms}_disc.zarr")
-        iol.lifecycle_store(tmp_path / "hindcast.zarr", tmp_path / "cases.zarr", tmp_path / f"{ms}_sims.zarr",
-                            tmp_path / f"{ms}_lc.zarr", lifecycle_cfg=cfg, fatigue_cfg={}, threads=1)
+        st_lifecycle.run(hindcast=tmp_path / "hindcast.zarr", cases=tmp_path / "cases.zarr",
+                         simulations=tmp_path / f"{ms}_sims.zarr", store=tmp_path / f"{ms}_lc.zarr", lifecycle=cfg,
+                         fatigue={}, threads=1)
     lc = open_zarr(tmp_path / "MS1_lc.zarr")
     assert lc["damage_sn"].dims == ("time", "line") and lc.sizes["time"] == 1500
     np.testing.assert_allclose(lc["lifecycle_damage"].sel(curve="sn").values, np.array([2e-6, 5e-6, 1e-6]) * 1500)
-    iol.lifecycle_figures(tmp_path / "MS1_lc.zarr", {k: tmp_path / f"{k}.png" for k in ("validation", "loo_map",
-                                                                                       "damage_metocean")},
-                          mooring_system="MS1")
+    st_lifecycle.figures(lifecycle=tmp_path / "MS1_lc.zarr", **{k: tmp_path / f"{k}.png" for k in (
+        "validation", "loo_map", "damage_metocean")}, ms="MS1")
     lcs = [tmp_path / f"{ms}_lc.zarr" for ms in systems]
-    table = iol.compare_outputs(lcs, [tmp_path / f"{ms}_disc.zarr" for ms in systems], tmp_path / "bins.zarr",
-                                tmp_path / "ms.tsv", tmp_path / "summary.csv", tmp_path / "rec.yaml",
-                                systems=systems, lifecycle_cfg=cfg)
+    table = st_compare.run(lifecycles=lcs, discretes=[tmp_path / f"{ms}_disc.zarr" for ms in systems],
+                           bins=tmp_path / "bins.zarr", mooring_systems=tmp_path / "ms.tsv",
+                           summary=tmp_path / "summary.csv", recommendation=tmp_path / "rec.yaml",
+                           systems=systems, lifecycle=cfg)
     csv = pd.read_csv(tmp_path / "summary.csv")
     assert len(csv) == len(table) == 12
     # MS1 damages 2e-6..5e-6 per hour -> ~0.04 per year x 25 y x DFF fails; MS2 is 100x lower and passes
@@ -298,16 +301,16 @@ def test_stores_comparison_and_sensitivity_end_to_end(tmp_path):
                                    corrosion=fatigue.fatigue_settings({}))
     assert np.all(corr["utilisation_corroded"] > corr["utilisation"])
     assert not np.any(corr["passes"] & ~table["passes"])
-    iol.compare_figures(tmp_path / "summary.csv", tmp_path / "rec.yaml", lcs,
-                        {k: tmp_path / f"{k}.png" for k in ("damage_mass", "difference", "offsets", "recommendation")},
-                        systems=systems)
+    st_compare.figures(summary=tmp_path / "summary.csv", recommendation=tmp_path / "rec.yaml", lifecycles=lcs,
+                       **{k: tmp_path / f"{k}.png" for k in ("damage_mass", "difference", "offsets")},
+                       recommendation_fig=tmp_path / "recommendation.png", systems=systems)
     seeds = xr.Dataset({v: (("case", "line"), np.full((4, 3), 1e-5) * np.array([[1], [1.1], [0.9], [1.2]]))
                         for v in ("damage_sn", "damage_tn")}, coords={"case": np.arange(4) + 10**6, "line": LINES})
     write_zarr(seeds, tmp_path / "seeds.zarr")
     outs = {k: tmp_path / "sens" / f"{k}.{'csv' if k.endswith('csv') else 'png'}" for k in
             ("seeds_csv", "seeds_fig", "corrosion_csv", "corrosion_fig", "mean_stress_csv", "mean_stress_fig")}
-    iol.sensitivity_outputs(tmp_path / "seeds.zarr", lcs[1], lcs, tmp_path / "ms.tsv", outs, systems=systems,
-                            mooring_system="MS2", corrosion_line="M1", fatigue_cfg={})
+    st_sensitivity.run(seeds=tmp_path / "seeds.zarr", lifecycle=lcs[1], lifecycles=lcs,
+                       mooring_systems=tmp_path / "ms.tsv", **outs, systems=systems, ms="MS2", line="M1", fatigue={})
     lives = pd.read_csv(outs["seeds_csv"])
     assert lives[(lives.curve == "sn") & (lives.line == "M1")]["life_years"].max() == pytest.approx(1 / (0.9e-5 * 8766), rel=1e-5)
     ms_tab = pd.read_csv(outs["mean_stress_csv"])

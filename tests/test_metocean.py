@@ -13,8 +13,9 @@ import pytest
 from scipy import stats
 
 from moorlife import metocean as mo
-from moorlife.io import open_zarr, read_study_config, read_yaml, write_zarr
+from moorlife.io import open_zarr, read_yaml, write_zarr
 from moorlife.names import METOCEAN_ATTRS, METOCEAN_VARS
+from moorlife.stages.metocean import build_hindcast
 
 ROOT = Path(__file__).resolve().parents[1]
 SEED = 20190601
@@ -22,8 +23,8 @@ N_PAPER = 271_728  # hourly sea states 1985-2015 (paper section 2)
 
 
 @pytest.fixture(scope="module")
-def config() -> dict:
-    return read_study_config(ROOT / "config/config.yaml", schema=ROOT / "workflow/schemas/config.schema.yaml")
+def config(study_config_factory) -> dict:
+    return study_config_factory()
 
 
 @pytest.fixture(scope="module")
@@ -303,7 +304,7 @@ def test_other_seeds_stay_in_wider_bands(seed):
 def test_build_hindcast_contract_roundtrip(config, tmp_path, caplog):
     h = dict(config["hindcast"], start="1985-01-01T00:00", end="1987-12-31T23:00")
     with caplog.at_level(logging.INFO, logger="moorlife"):
-        ds = mo.build_hindcast(h, SEED)
+        ds = build_hindcast(h, SEED)
     assert "synthetic hindcast" in caplog.text
     assert ds.sizes == {"time": 26_280}
     assert ds["time"].dtype == np.dtype("datetime64[ns]")
@@ -321,7 +322,7 @@ def test_build_hindcast_contract_roundtrip(config, tmp_path, caplog):
     for v in METOCEAN_VARS:
         np.testing.assert_array_equal(back[v].values, ds[v].values)
     # whole study config accepted too, and the same seed gives the same numbers
-    again = mo.build_hindcast(dict(config, hindcast=h), SEED)
+    again = build_hindcast(dict(config, hindcast=h), SEED)
     np.testing.assert_array_equal(again["hs"].values, ds["hs"].values)
 
 
@@ -333,16 +334,16 @@ def test_build_hindcast_file_source_dispatch(config, tmp_path):
     )  # varying Hs, Tp and wind speed: a constant coordinate is refused
     (tmp_path / "h.csv").write_text("#ERA5,LONGITUDE:-2.9,LATITUDE:43.6,\n" + df.to_csv(index=False))
     h = dict(config["hindcast"], source="file", path="h.csv", start="2001-01-01T06:00", end="2001-01-01T23:00")
-    ds = mo.build_hindcast(h, SEED, base_dir=str(tmp_path))
+    ds = build_hindcast(h, SEED, base_dir=str(tmp_path))
     assert ds.sizes["time"] == 18
     np.testing.assert_allclose(ds["wind_dir"], 90.0)  # u = -5: blowing west, from the east
     np.testing.assert_allclose(ds["wind_speed"], (5.0 + 0.01 * np.arange(6, 24)) * 9.0**0.14)
     with pytest.raises(mo.HindcastError, match="hindcast.path"):
-        mo.build_hindcast(dict(h, path=None), SEED)
+        build_hindcast(dict(h, path=None), SEED)
 
 
 def test_validate_hindcast_on_dataset_and_frame(config):
-    ds = mo.build_hindcast(dict(config["hindcast"], start="1990-01-01", end="1990-01-10T23:00"), SEED)
+    ds = build_hindcast(dict(config["hindcast"], start="1990-01-01", end="1990-01-10T23:00"), SEED)
     clean = mo.validate_hindcast(ds, source="synthetic")
     np.testing.assert_array_equal(clean["hs"].to_numpy(), ds["hs"].values)
     bad = ds.copy(deep=True)
@@ -382,7 +383,7 @@ def test_figures_are_built(config):
 
     from moorlife.plots.metocean import plot_hs_tp, plot_wave_rose, plot_wind_rose
 
-    ds = mo.build_hindcast(dict(config["hindcast"], start="1985-01-01", end="1985-12-31T23:00"), SEED)
+    ds = build_hindcast(dict(config["hindcast"], start="1985-01-01", end="1985-12-31T23:00"), SEED)
     for fn in (plot_wind_rose, plot_wave_rose):
         fig = fn(ds)
         assert isinstance(fig, Figure) and fig.axes[0].name == "polar"

@@ -11,6 +11,7 @@ import xarray as xr
 
 from moorlife import io as mio
 from moorlife import parallel
+from moorlife.stages.fanout import map_cases
 
 
 def noisy_case(case_vars, *, case_ids, scale, record_dir=None, fail_on=None):
@@ -59,7 +60,7 @@ def test_batch_slices_cover_all():
 
 def test_store_is_complete_and_carries_cases(tmp_path, cases, client):
     out = tmp_path / "results" / "MS1" / "sim.zarr"
-    ds = parallel.map_cases(noisy_case, cases, out, dim="case", func_kwargs={"scale": 2.0},
+    ds = map_cases(noisy_case, cases, out, dim="case", func_kwargs={"scale": 2.0},
                             batch_size=5, fingerprint="fp1", client=client)
     assert out.exists() and not mio.partial_path(out).exists()
     back = mio.open_zarr(out)
@@ -78,7 +79,7 @@ def test_identical_whatever_workers_and_batches(tmp_path, cases):
     runs = []
     for threads, bs in [(1, 23), (2, 4), (2, 1)]:
         out = tmp_path / f"w{threads}b{bs}" / "results" / "sim.zarr"
-        parallel.map_cases(noisy_case, cases, out, dim="case", func_kwargs={"scale": 1.5},
+        map_cases(noisy_case, cases, out, dim="case", func_kwargs={"scale": 1.5},
                            batch_size=bs, fingerprint="fp", threads=threads)
         runs.append(mio.open_zarr(out))
     for other in runs[1:]:
@@ -90,7 +91,7 @@ def test_resume_computes_only_missing(tmp_path, cases, client):
     rec = tmp_path / "rec"
     rec.mkdir()
     with pytest.raises(RuntimeError, match="planted failure on case 12"):
-        parallel.map_cases(noisy_case, cases, out, dim="case",
+        map_cases(noisy_case, cases, out, dim="case",
                            func_kwargs={"scale": 3.0, "record_dir": str(rec), "fail_on": 12},
                            batch_size=5, fingerprint="fpR", client=client)
     assert not out.exists(), "a failed run must not leave the declared output"
@@ -99,7 +100,7 @@ def test_resume_computes_only_missing(tmp_path, cases, client):
     first = set(computed(rec))
     for p in rec.iterdir():
         p.unlink()
-    parallel.map_cases(noisy_case, cases, out, dim="case",
+    map_cases(noisy_case, cases, out, dim="case",
                        func_kwargs={"scale": 3.0, "record_dir": str(rec)},
                        batch_size=5, fingerprint="fpR", client=client)
     second = set(computed(rec))
@@ -107,7 +108,7 @@ def test_resume_computes_only_missing(tmp_path, cases, client):
     done_before = first - {10, 11, 12, 13, 14}
     assert not (second & done_before), "finished batches must be reused, not recomputed"
     fresh = tmp_path / "fresh" / "results" / "sim.zarr"
-    parallel.map_cases(noisy_case, cases, fresh, dim="case", func_kwargs={"scale": 3.0},
+    map_cases(noisy_case, cases, fresh, dim="case", func_kwargs={"scale": 3.0},
                        batch_size=5, fingerprint="x", client=client)
     xr.testing.assert_identical(mio.open_zarr(out).drop_attrs(), mio.open_zarr(fresh).drop_attrs())
 
@@ -117,12 +118,12 @@ def test_changed_fingerprint_starts_afresh(tmp_path, cases, client):
     rec = tmp_path / "rec"
     rec.mkdir()
     with pytest.raises(RuntimeError):
-        parallel.map_cases(noisy_case, cases, out, dim="case",
+        map_cases(noisy_case, cases, out, dim="case",
                            func_kwargs={"scale": 1.0, "record_dir": str(rec), "fail_on": 22},
                            batch_size=5, fingerprint="old", client=client)
     for p in rec.iterdir():
         p.unlink()
-    parallel.map_cases(noisy_case, cases, out, dim="case",
+    map_cases(noisy_case, cases, out, dim="case",
                        func_kwargs={"scale": 2.0, "record_dir": str(rec)},
                        batch_size=5, fingerprint="new", client=client)
     assert computed(rec) == list(range(23))
@@ -137,7 +138,7 @@ def test_corrupted_partial_is_not_trusted(tmp_path, cases, client):
     part = mio.partial_path(out)
     part.mkdir(parents=True)
     (part / "zarr.json").write_text("{ this is not json")
-    ds = parallel.map_cases(noisy_case, cases, out, dim="case", func_kwargs={"scale": 1.0},
+    ds = map_cases(noisy_case, cases, out, dim="case", func_kwargs={"scale": 1.0},
                             batch_size=7, fingerprint="fpC", client=client)
     assert ds.sizes["case"] == 23 and np.isfinite(ds["surge_mpm"]).all()
 
@@ -175,3 +176,63 @@ def test_dataset_digest_sensitive_to_values(cases):
     a = parallel.dataset_digest(cases)
     b = parallel.dataset_digest(cases.assign(hs=cases["hs"] + 1e-12))
     assert a != b and a == parallel.dataset_digest(cases.copy(deep=True))
+
+
+def test_resume_with_another_batch_size_reuses_every_finished_batch(tmp_path, cases, client):
+    """simulation.batch_size is scheduling only: a partial store keeps its own batch size, so a
+    rerun with another one recomputes only the missing cases, and the bits do not change."""
+    out = tmp_path / "results" / "MS2" / "sim.zarr"
+    rec = tmp_path / "rec"
+    rec.mkdir()
+    with pytest.raises(RuntimeError, match="planted failure on case 12"):
+        map_cases(noisy_case, cases, out, dim="case", func_kwargs={"scale": 3.0, "record_dir": str(rec), "fail_on": 12},
+                  batch_size=5, fingerprint="fpB", client=client)
+    for p in rec.iterdir():
+        p.unlink()
+    map_cases(noisy_case, cases, out, dim="case", func_kwargs={"scale": 3.0, "record_dir": str(rec)},
+              batch_size=3, fingerprint="fpB", client=client)
+    assert computed(rec) == [10, 11, 12, 13, 14], "only the failed batch of the stored batch size is redone"
+    fresh = tmp_path / "fresh" / "results" / "sim.zarr"
+    map_cases(noisy_case, cases, fresh, dim="case", func_kwargs={"scale": 3.0}, batch_size=7, fingerprint="y",
+              client=client)
+    xr.testing.assert_identical(mio.open_zarr(out).drop_attrs(), mio.open_zarr(fresh).drop_attrs())
+
+
+class _ListSink:
+    """An in-memory sink: map_batches needs no file."""
+
+    def __init__(self, n, batch_size):
+        self.slices = parallel.batch_slices(n, batch_size)
+        self.results = {}
+
+    def todo(self):
+        return [b for b in range(len(self.slices)) if b not in self.results]
+
+    def write(self, b, result):
+        self.results[b] = result
+
+
+def test_map_batches_hands_every_batch_to_the_sink(cases, client):
+    sink = _ListSink(cases.sizes["case"], 4)
+    parallel.map_batches(noisy_case, cases, sink, dim="case", func_kwargs={"scale": 1.0}, client=client)
+    assert sorted(sink.results) == list(range(6))
+    got = np.concatenate([sink.results[b]["surge_mpm"] for b in range(6)])
+    expected = noisy_case({"hs": cases["hs"].values}, case_ids=cases["case"].values, scale=1.0)["surge_mpm"]
+    np.testing.assert_array_equal(got, expected)
+
+
+def test_store_fingerprint_ignores_scheduling_settings(cases):
+    from moorlife.stages import result_settings
+    from moorlife.stages.simulate import store_fingerprint
+
+    platform = xr.Dataset({"mass": ("dof", np.arange(6.0))})
+    base = dict(dim="case", ms="MS1", row={"mooring_system": "MS1", "EA_N": 1.0}, seed=3, mooring={}, fatigue={},
+                statistics={}, platform_cfg={"a": 1}, cases=cases, platform=platform)
+    fp = store_fingerprint(simulation={"dt": 0.1, "batch_size": 8}, **base)
+    assert fp == store_fingerprint(simulation={"dt": 0.1, "batch_size": 2}, **base)
+    assert fp == store_fingerprint(simulation={"dt": 0.1}, **base)
+    assert fp != store_fingerprint(simulation={"dt": 0.05, "batch_size": 8}, **base)
+    cfg = {"simulation": {"dt": 0.1, "batch_size": 8}, "lifecycle": {"rbf": {"chunk_rows": 10, "shape": "fixed"}}}
+    assert result_settings(cfg, "simulation") == {"dt": 0.1}
+    assert result_settings(cfg, "lifecycle") == {"rbf": {"shape": "fixed"}}
+    assert cfg["lifecycle"]["rbf"]["chunk_rows"] == 10, "the config itself is left as it was"

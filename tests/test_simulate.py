@@ -379,7 +379,7 @@ def test_simulate_store_end_to_end(oc4, tmp_path):
     import xarray as xr
 
     from moorlife.io import open_zarr, write_zarr
-    from moorlife.io.simulation import simulate_store
+    from moorlife.stages import simulate as stage
 
     cases = xr.Dataset(
         {k: ("case", np.asarray(v, dtype=float)) for k, v in sea(3).items()}
@@ -388,11 +388,11 @@ def test_simulate_store_end_to_end(oc4, tmp_path):
     )
     write_zarr(cases, tmp_path / "results/selection/cases.zarr")
     out = tmp_path / "results/MS3/simulations.zarr"
-    ds = simulate_store(
-        tmp_path / "results/selection/cases.zarr", DATA / "platform_coarse.nc", REPO / "config/platform.yaml", out,
-        dim="case", mooring_system="MS3", mooring_row=ROWS["MS3"], seed=7,
-        sim_cfg={**SIM, "batch_size": 2, "duration": 120.0, "transient": 30.0}, mooring_cfg=QS, fatigue_cfg={},
-        stats_cfg=STATS, threads=1,
+    ds = stage.run(
+        cases=tmp_path / "results/selection/cases.zarr", platform=DATA / "platform_coarse.nc",
+        platform_cfg=REPO / "config/platform.yaml", store=out, dim="case", ms="MS3", row=ROWS["MS3"], seed=7,
+        simulation={**SIM, "duration": 120.0, "transient": 30.0}, mooring=QS, fatigue={}, statistics=STATS,
+        batch_size=2, threads=1,
     )
     back = open_zarr(out)
     for name in (*sim.names.SIM_SCALAR_VARS, *sim.names.SIM_LINE_VARS, "tension_mean", "hs", "role"):

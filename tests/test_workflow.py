@@ -89,6 +89,15 @@ def test_full_run_then_noop(study):
     assert "Nothing to be done" in moved.stdout + moved.stderr, "a scheduler address change must rerun nothing"
 
 
+def test_scheduling_settings_rerun_nothing(study, tmp_path):
+    """simulation.batch_size and lifecycle.rbf.chunk_rows change scheduling or memory only: no
+    rule's params hold them, so changing them reruns nothing (issue 20 item 2)."""
+    sched = tmp_path / "sched.yaml"
+    sched.write_text("simulation:\n  batch_size: 3\nlifecycle:\n  rbf:\n    chunk_rows: 100\n")
+    dry = smk(study, "-n", overlays=[*OVERLAYS, str(sched)])
+    assert "Nothing to be done" in dry.stdout + dry.stderr, dry.stdout[-3000:]
+
+
 def test_lint_clean(tmp_path):
     work = copy_repo(tmp_path)
     res = smk(work, "--lint", check=False)

@@ -1,12 +1,10 @@
-"""Dask fan-out of a pure per-case function into a resumable Zarr store.
+"""Dask fan-out of a pure per-case function over batches of cases.
 
-The driver (the process that calls :func:`map_cases`) is the only writer. Cases are cut into
-batches of ``batch_size``; each batch is one Dask task. Finished batches are written into a
-*partial* store outside the declared output (:func:`moorlife.io.partial_path`), one region per
-batch, aligned with the store's chunks, followed by the batch's done flag. The store records a
-fingerprint of everything that determines the numbers; a rerun with the same fingerprint
-computes only the missing batches, a different one starts afresh. When every batch is done the
-store is flagged complete and renamed into place.
+This module holds Dask only and touches no file: :func:`map_batches` sends each batch still to
+do (one Dask task per batch) to the workers and hands every finished batch to a sink in the
+driver, which is the only writer. The resumable Zarr store that is the sink of the workflow's
+stages is :class:`moorlife.io.partial.PartialStore`; :func:`moorlife.stages.fanout.map_cases`
+puts the two together.
 
 The cluster is either a :class:`distributed.LocalCluster` sized from the rule's threads (one
 single-threaded worker process per thread, BLAS pinned to one thread, bound to 127.0.0.1), or an
@@ -20,18 +18,13 @@ import contextlib
 import hashlib
 import logging
 import os
-import shutil
 import time
 import uuid
 from collections.abc import Callable, Iterator, Mapping
-from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 import xarray as xr
-
-from moorlife import io as mio
-from moorlife import names
 
 __all__ = [
     "BLAS_ENV",
@@ -43,7 +36,8 @@ __all__ = [
     "temporary_security",
     "batch_slices",
     "dataset_digest",
-    "map_cases",
+    "BatchSink",
+    "map_batches",
 ]
 
 SCHEDULER_ENV = "DASK_SCHEDULER_ADDRESS"
@@ -56,8 +50,6 @@ BLAS_ENV: tuple[str, ...] = (
     "NUMEXPR_NUM_THREADS",
     "NUMBA_NUM_THREADS",
 )
-_DONE = "_batch_done"
-_BATCH_DIM = "_batch"
 _log = logging.getLogger("moorlife.parallel")
 
 
@@ -255,131 +247,70 @@ def _run_batch(func: Callable[..., Mapping[str, np.ndarray]], kwargs: Mapping[st
     return {k: np.asarray(v) for k, v in out.items()}
 
 
-def _dims_for(name: str, arr: np.ndarray, dim: str) -> tuple[str, ...]:
-    if arr.ndim == 1:
-        return (dim,)
-    if arr.ndim == 2 and arr.shape[1] == len(names.LINES):
-        return (dim, names.LINE)
-    return (dim, *(f"{name}_{i}" for i in range(1, arr.ndim)))
+class BatchSink(Protocol):
+    """Where finished batches go (:class:`moorlife.io.partial.PartialStore` is the store one)."""
+
+    slices: list[slice]
+
+    def todo(self) -> list[int]:
+        """Indices of the batches still to compute."""
+        ...
+
+    def write(self, b: int, result: Mapping[str, np.ndarray]) -> None:
+        """Keep the result of batch ``b``."""
+        ...
 
 
-def _template(first: Mapping[str, np.ndarray], cases: xr.Dataset, dim: str, n_batches: int,
-              attrs_of: Callable[[str], Mapping[str, str]] | None = None) -> xr.Dataset:
-    n = cases.sizes[dim]
-    data: dict[str, Any] = {}
-    for name, arr in first.items():
-        dims = _dims_for(name, arr, dim)
-        shape = (n, *arr.shape[1:])
-        fill = np.nan if arr.dtype.kind == "f" else 0
-        attrs = names.SIM_ATTRS.get(name, {})
-        if attrs_of is not None:
-            try:
-                attrs = {**attrs, **attrs_of(name)}
-            except KeyError:
-                pass
-        data[name] = xr.Variable(dims, np.full(shape, fill, dtype=arr.dtype), attrs=dict(attrs))
-    data[_DONE] = xr.Variable((_BATCH_DIM,), np.zeros(n_batches, dtype="int8"))
-    coords: dict[str, Any] = {dim: cases[dim].values}
-    if any(names.LINE in v.dims for v in data.values()):
-        coords[names.LINE] = list(names.LINES)
-    return xr.Dataset(data, coords=coords)
-
-
-def _open_partial(path: Path, fp: str) -> tuple[xr.Dataset | None, int | None]:
-    if not path.exists():
-        return None, None
-    try:
-        ds = xr.open_zarr(path, **mio.ZARR_KW)
-        if ds.attrs.get("fingerprint") != fp:
-            _log.info("partial store %s has another fingerprint: starting afresh", path)
-            raise ValueError("fingerprint")
-        return ds, int(ds.attrs["batch_size"])
-    except Exception:
-        shutil.rmtree(path, ignore_errors=True)
-        return None, None
-
-
-def _write_batch(path: Path, dim: str, sl: slice, b: int, result: Mapping[str, np.ndarray]) -> None:
-    import zarr
-
-    region = xr.Dataset({k: (_dims_for(k, v, dim), v) for k, v in result.items()})
-    region = region.drop_vars([c for c in region.coords], errors="ignore")
-    region.to_zarr(path, region={dim: sl, **{d: slice(None) for d in region.dims if d != dim}},
-                   mode="r+", **mio.ZARR_KW)
-    zarr.open_group(str(path), mode="r+")[_DONE][b] = 1
-
-
-def map_cases(
+def map_batches(
     func: Callable[..., Mapping[str, np.ndarray]],
     cases: xr.Dataset,
-    output: str | os.PathLike[str],
+    sink: BatchSink,
     *,
     dim: str,
     func_kwargs: Mapping[str, Any],
-    batch_size: int,
-    fingerprint: str,
     threads: int = 1,
     log: logging.Logger | None = None,
     client: Any | None = None,
-    attrs: Mapping[str, Any] | None = None,
-    attrs_of: Callable[[str], Mapping[str, str]] | None = None,
-) -> xr.Dataset:
-    """Map a pure per-case function over the cases and write a complete Zarr store.
+) -> None:
+    """Map a pure per-case function over the batches still to do, handing each result to the sink.
 
     Parameters
     ----------
     func : callable
         ``func(case_vars, case_ids=ids, **func_kwargs) -> {name: array (B, ...)}``, where
-        ``case_vars`` maps each data variable of ``cases`` with only ``dim`` to a ``(B,)``
-        array. It must be importable by the workers and depend only on its arguments.
+        ``case_vars`` maps each numeric data variable of ``cases`` with only ``dim`` to a
+        ``(B,)`` array. It must be importable by the workers and depend only on its arguments.
     cases : xarray.Dataset
         The sea states, along ``dim`` (``case`` or ``bin``).
-    output : path-like
-        The declared output store.
+    sink : BatchSink
+        Gives the batches (``sink.slices``, ``sink.todo()``) and takes each finished one
+        (``sink.write(b, result)``, called in this process only: the driver is the only writer).
     dim : str
         The case dimension.
     func_kwargs : mapping
         Static arguments, sent once to every worker.
-    batch_size : int
-        Cases per task. A partial store keeps the batch size it was started with.
-    fingerprint : str
-        Digest of everything that determines the numbers (config, inputs, code version).
     threads : int
         Workers of the LocalCluster when no scheduler address is set.
     log : logging.Logger, optional
         Progress goes here (the rule's log).
     client : distributed.Client, optional
         Use this client instead of creating one.
-    attrs : mapping, optional
-        Extra attributes of the final store.
-    attrs_of : callable, optional
-        ``attrs_of(name) -> {"units": ..., ...}`` for output variables beyond the contract's
-        (``KeyError`` for none); contract variables get :data:`moorlife.names.SIM_ATTRS`.
 
-    Returns
-    -------
-    xarray.Dataset
-        The complete store, loaded: the outputs plus the case variables.
+    Raises
+    ------
+    Exception
+        The first batch failure, after every batch that does finish has been handed over.
     """
     log = log or _log
-    out = Path(output)
-    part = mio.partial_path(out)
-    part.parent.mkdir(parents=True, exist_ok=True)
-    n = cases.sizes[dim]
+    todo = sink.todo()
+    if not todo:
+        return
+    slices = sink.slices
     ids = np.asarray(cases[dim].values)
     case_names = [k for k, v in cases.data_vars.items() if v.dims == (dim,) and v.dtype.kind in "fiub"]
-    existing, stored_bs = _open_partial(part, fingerprint)
-    bs = stored_bs or int(batch_size)
-    slices = batch_slices(n, bs)
-    done = np.zeros(len(slices), dtype=bool)
-    if existing is not None:
-        done = np.asarray(existing[_DONE].values, dtype=bool)
-        log.info("resuming %s: %d of %d batches already done", part, int(done.sum()), len(slices))
-    todo = [b for b in range(len(slices)) if not done[b]]
     t0 = time.perf_counter()
 
     def _submit_all(cl: Any) -> None:
-        nonlocal existing
         [kw] = cl.scatter([dict(func_kwargs)], broadcast=True, hash=False)
         run = uuid.uuid4().hex[:12]
         futures = {}
@@ -399,41 +330,15 @@ def map_cases(
                 log.error("batch %d/%d failed: %s", b + 1, len(slices), exc)
                 failure = failure or exc
                 continue
-            if existing is None:
-                tpl = _template(result, cases, dim, len(slices), attrs_of)
-                tpl.attrs.update({"fingerprint": fingerprint, "batch_size": bs})
-                enc = {v: {"chunks": (bs, *tpl[v].shape[1:])} for v in tpl.data_vars if v != _DONE}
-                enc[_DONE] = {"chunks": (1,)}
-                mio.storable(tpl).to_zarr(part, mode="w", encoding=enc, **mio.ZARR_KW)
-                existing = tpl
-            _write_batch(part, dim, slices[b], b, result)
+            sink.write(b, result)
             log.info("batch %d/%d done (%d of %d this run, %.1f s)", b + 1, len(slices), k, len(todo),
                      time.perf_counter() - t0)
             fut.release()
         if failure is not None:
             raise failure
 
-    if todo:
-        if client is not None:
-            _submit_all(client)
-        else:
-            with dask_client(threads) as cl:
-                _submit_all(cl)
-    return _finalise(part, out, cases, dim, attrs or {})
-
-
-def _finalise(part: Path, out: Path, cases: xr.Dataset, dim: str, attrs: Mapping[str, Any]) -> xr.Dataset:
-    """Check every batch, add the case variables, flag complete, and rename into place."""
-    import zarr
-
-    group = zarr.open_group(str(part), mode="r+")
-    if not bool(np.all(group[_DONE][:] == 1)):
-        raise RuntimeError(f"{part}: not every batch is done; refusing to promote it")
-    extra = cases[[k for k, v in cases.data_vars.items() if v.dims == (dim,)]]
-    extra = extra.reset_coords(drop=True).drop_vars(dim, errors="ignore")
-    mio.storable(extra).to_zarr(part, mode="a", **mio.ZARR_KW)
-    group = zarr.open_group(str(part), mode="r+")
-    del group[_DONE]
-    group.attrs.update({**dict(attrs), mio.COMPLETE_ATTR: True})
-    mio.promote(part, out)
-    return mio.open_zarr(out)
+    if client is not None:
+        _submit_all(client)
+    else:
+        with dask_client(threads) as cl:
+            _submit_all(cl)

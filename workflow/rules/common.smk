@@ -7,6 +7,7 @@ from moorlife.config import check_against_table, validate_config
 from moorlife.hydro import bem_settings
 from moorlife.io.platform import read_platform_config
 from moorlife.io import read_mooring_systems, read_yaml
+from moorlife.stages import result_settings
 
 # Validate before any work: unknown keys, wrong types and bad values stop here, naming the key.
 _cfg_sources = ", ".join(str(f) for f in workflow.configfiles) or "config"
@@ -32,6 +33,13 @@ def all_cores():
         return workflow.cores
     except WorkflowError:
         return 1
+
+
+# The sensitivity study (sensitivity.smk); its seed realisations feed compare's fatigue-life
+# band when the sensitivity system is studied.
+SENS = config["lifecycle"]["sensitivity"]
+SENS_MS = SENS["mooring_system"]
+SEEDS = ["results/sensitivity/seeds.zarr"] if SENS_MS in MS_IDS else []
 
 
 def mooring_row(ms):

@@ -10,7 +10,7 @@ rule hydro:
     input:
         _hydro_inputs,
     output:
-        "results/hydro/platform.nc",
+        store="results/hydro/platform.nc",
     params:
         bem=bem_settings(config["hydro"], read_platform_config(config["platform"])),
     threads: 2

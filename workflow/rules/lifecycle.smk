@@ -9,9 +9,9 @@ rule lifecycle:
         cases="results/selection/cases.zarr",
         simulations="results/{ms}/simulations.zarr",
     output:
-        directory("results/{ms}/lifecycle.zarr"),
+        store=directory("results/{ms}/lifecycle.zarr"),
     params:
-        lifecycle=config["lifecycle"],
+        lifecycle=result_settings(config, "lifecycle"),
         fatigue=config["fatigue"],
     threads: 2
     resources:
@@ -26,7 +26,7 @@ rule lifecycle:
 
 rule lifecycle_figures:
     input:
-        "results/{ms}/lifecycle.zarr",
+        lifecycle="results/{ms}/lifecycle.zarr",
     output:
         validation=report(
             "results/figures/validation_{ms}.png",

@@ -6,7 +6,7 @@ rule metocean:
     input:
         _hindcast_file,
     output:
-        directory("results/metocean/hindcast.zarr"),
+        store=directory("results/metocean/hindcast.zarr"),
     params:
         hindcast=config["hindcast"],
         seed=config["seed"],
@@ -20,7 +20,7 @@ rule metocean:
 
 rule metocean_figures:
     input:
-        "results/metocean/hindcast.zarr",
+        hindcast="results/metocean/hindcast.zarr",
     output:
         wind_rose=report("results/figures/wind_rose.png", category="Metocean", caption="../report/wind_rose.rst"),
         wave_rose=report("results/figures/wave_rose.png", category="Metocean", caption="../report/wave_rose.rst"),

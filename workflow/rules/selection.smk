@@ -4,9 +4,9 @@
 
 rule selection:
     input:
-        "results/metocean/hindcast.zarr",
+        hindcast="results/metocean/hindcast.zarr",
     output:
-        directory("results/selection/cases.zarr"),
+        store=directory("results/selection/cases.zarr"),
     params:
         n_train=config["selection"]["n_train"],
         n_validate=config["selection"]["n_validate"],
@@ -24,9 +24,9 @@ rule selection:
 
 rule discrete:
     input:
-        "results/metocean/hindcast.zarr",
+        hindcast="results/metocean/hindcast.zarr",
     output:
-        directory("results/selection/discrete.zarr"),
+        store=directory("results/selection/discrete.zarr"),
     params:
         hs_edges=config["selection"]["discrete"]["hs_edges"],
         wind_edges=config["selection"]["discrete"]["wind_edges"],
@@ -48,10 +48,10 @@ rule selection_figures:
         cases="results/selection/cases.zarr",
         discrete="results/selection/discrete.zarr",
     output:
-        cloud=report(
+        cloud_fig=report(
             "results/figures/selection_cloud.png", caption="../report/selection_cloud.rst", category="Selection"
         ),
-        discrete=report(
+        discrete_fig=report(
             "results/figures/discrete_states.png", caption="../report/discrete_states.rst", category="Selection"
         ),
     resources:

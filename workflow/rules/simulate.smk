@@ -1,6 +1,8 @@
 # Stage 'simulate': coupled time-domain simulation of every selected sea state and of every bin
 # of the conventional scatter matrix, per mooring system (paper section 3.3). Batches of sea
-# states are fanned out with Dask (moorlife.parallel.map_cases); a killed run resumes.
+# states are fanned out with Dask (moorlife.stages.fanout.map_cases); a killed run resumes.
+# simulation.batch_size is scheduling only: it is not a param (the adapter reads it from the
+# config), so changing it reruns nothing and keeps a partial store.
 
 
 rule simulate_cases:
@@ -9,13 +11,13 @@ rule simulate_cases:
         platform="results/hydro/platform.nc",
         platform_cfg=config["platform"],
     output:
-        directory("results/{ms}/simulations.zarr"),
+        store=directory("results/{ms}/simulations.zarr"),
     params:
         dim="case",
         ms=lambda wc: wc.ms,
         row=lambda wc: mooring_row(wc.ms),
         seed=config["seed"],
-        simulation=config["simulation"],
+        simulation=result_settings(config, "simulation"),
         mooring=config.get("mooring", {}),
         fatigue=config["fatigue"],
         statistics=config.get("statistics", {}),
@@ -28,26 +30,14 @@ rule simulate_cases:
         "../scripts/simulate.py"
 
 
-rule simulate_discrete:
+use rule simulate_cases as simulate_discrete with:
     input:
         cases="results/selection/discrete.zarr",
         platform="results/hydro/platform.nc",
         platform_cfg=config["platform"],
     output:
-        directory("results/{ms}/discrete.zarr"),
+        store=directory("results/{ms}/discrete.zarr"),
     params:
         dim="bin",
-        ms=lambda wc: wc.ms,
-        row=lambda wc: mooring_row(wc.ms),
-        seed=config["seed"],
-        simulation=config["simulation"],
-        mooring=config.get("mooring", {}),
-        fatigue=config["fatigue"],
-        statistics=config.get("statistics", {}),
-    threads: all_cores()
-    conda:
-        "../../envs/moorlife.yaml"
     log:
         "logs/{ms}/simulate_discrete.log",
-    script:
-        "../scripts/simulate.py"

@@ -1,14 +1,10 @@
 """Rule compare_figures: summary.csv + lifecycle stores -> Fig. 20, Table 7 analogue, offsets, recommendation."""
 
-from moorlife.io import log_to
-from moorlife.io.lifecycle import compare_figures
+from moorlife.stages import compare
 
 
 def main(smk) -> None:
-    with log_to(smk.log[0]):
-        i = smk.input
-        compare_figures(i.summary, i.recommendation, list(i.lifecycle), dict(smk.output.items()),
-                        systems=smk.params.systems)
+    compare.figures(**smk.input, **smk.output, **smk.params, log=smk.log[0])
 
 
 if __name__ == "__main__":

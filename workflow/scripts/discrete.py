@@ -1,18 +1,10 @@
 """Rule discrete: the conventional scatter-matrix sea states -> results/selection/discrete.zarr."""
 
-from moorlife.io import log_to, open_zarr, write_zarr
-from moorlife.selection import discrete_states
+from moorlife.stages import selection
 
 
 def main(smk) -> None:
-    with log_to(smk.log[0]):
-        p = smk.params
-        hindcast = open_zarr(smk.input[0])
-        ds = discrete_states(
-            hindcast, hs_edges=p.hs_edges, wind_edges=p.wind_edges, tp_edges=p.tp_edges, sector=p.sector,
-            source=smk.input[0],
-        )
-        write_zarr(ds, smk.output[0])
+    selection.discrete(**smk.input, **smk.output, **smk.params, log=smk.log[0])
 
 
 if __name__ == "__main__":

@@ -1,13 +1,12 @@
 """Rule lifecycle: hindcast + cases + simulations -> results/{ms}/lifecycle.zarr."""
 
-from moorlife.io import log_to
-from moorlife.io.lifecycle import lifecycle_store
+from moorlife.stages import lifecycle
 
 
 def main(smk) -> None:
-    with log_to(smk.log[0]):
-        lifecycle_store(smk.input.hindcast, smk.input.cases, smk.input.simulations, smk.output[0],
-                        lifecycle_cfg=smk.params.lifecycle, fatigue_cfg=smk.params.fatigue, threads=smk.threads)
+    # lifecycle.rbf.chunk_rows changes memory only: read from the config, not a param (no rerun)
+    lifecycle.run(**smk.input, **smk.output, **smk.params, log=smk.log[0], threads=smk.threads,
+                  chunk_rows=smk.config["lifecycle"]["rbf"]["chunk_rows"])
 
 
 if __name__ == "__main__":

@@ -1,12 +1,10 @@
 """Rule lifecycle_figures: results/{ms}/lifecycle.zarr -> validation, LOO map, damage vs metocean."""
 
-from moorlife.io import log_to
-from moorlife.io.lifecycle import lifecycle_figures
+from moorlife.stages import lifecycle
 
 
 def main(smk) -> None:
-    with log_to(smk.log[0]):
-        lifecycle_figures(smk.input[0], dict(smk.output.items()), mooring_system=smk.wildcards.ms)
+    lifecycle.figures(**smk.input, **smk.output, **smk.params, log=smk.log[0], ms=smk.wildcards.ms)
 
 
 if __name__ == "__main__":

@@ -1,13 +1,10 @@
 """Rule metocean: build the hourly hindcast (synthetic or from a file) as a Zarr store."""
 
-from moorlife.io import log_to, write_zarr
-from moorlife.metocean import build_hindcast
+from moorlife.stages import metocean
 
 
 def main(smk) -> None:
-    with log_to(smk.log[0]):
-        ds = build_hindcast(dict(smk.params.hindcast), int(smk.params.seed), base_dir=".")
-        write_zarr(ds, smk.output[0])
+    metocean.run(**smk.input, **smk.output, **smk.params, log=smk.log[0])
 
 
 if __name__ == "__main__":

@@ -1,16 +1,10 @@
 """Rule sensitivity: seed spread (Fig. 21), corrosion evolution (Fig. 22), mean-stress factors (Table 8)."""
 
-from moorlife.io import log_to
-from moorlife.io.lifecycle import sensitivity_outputs
+from moorlife.stages import sensitivity
 
 
 def main(smk) -> None:
-    with log_to(smk.log[0]):
-        i, p = smk.input, smk.params
-        sensitivity_outputs(
-            i.seeds, i.lifecycle, list(i.lifecycles), i.mooring, dict(smk.output.items()),
-            systems=p.systems, mooring_system=p.ms, corrosion_line=p.line, fatigue_cfg=p.fatigue,
-        )
+    sensitivity.run(**smk.input, **smk.output, **smk.params, log=smk.log[0])
 
 
 if __name__ == "__main__":

@@ -40,6 +40,9 @@ __all__ = [
     "stale_temporaries",
     "save_figure",
     "storable",
+    "write_csv",
+    "read_csv_table",
+    "write_yaml",
 ]
 
 #: Root attribute set last on every store this package writes.
@@ -71,12 +74,29 @@ def partial_path(output: str | os.PathLike[str]) -> Path:
 
 
 def promote(partial: str | os.PathLike[str], output: str | os.PathLike[str]) -> Path:
-    """Rename a finished partial store into its declared place (atomic on one filesystem)."""
+    """Rename a finished partial store into its declared place (atomic on one filesystem).
+
+    When the two sit on different filesystems (``EXDEV``: e.g. ``results/MS1`` is a link to
+    another disk), the store is copied into a temporary sibling of ``output`` first and that
+    is renamed, so the declared output still appears whole or not at all.
+    """
     src, dst = Path(partial), Path(output)
     dst.parent.mkdir(parents=True, exist_ok=True)
     if dst.exists():
         shutil.rmtree(dst) if dst.is_dir() else dst.unlink()
-    os.replace(src, dst)
+    try:
+        os.replace(src, dst)
+    except OSError as exc:
+        if exc.errno != errno.EXDEV:
+            raise
+        tmp = dst.parent / f".{dst.name}.tmp-{uuid.uuid4().hex[:8]}"
+        try:
+            shutil.copytree(src, tmp) if src.is_dir() else shutil.copy2(src, tmp)
+            os.replace(tmp, dst)
+        finally:
+            if tmp.exists():
+                shutil.rmtree(tmp, ignore_errors=True) if tmp.is_dir() else tmp.unlink()
+        shutil.rmtree(src) if src.is_dir() else src.unlink()
     return dst
 
 
@@ -249,6 +269,28 @@ def read_yaml(path: str | os.PathLike[str]) -> dict[str, Any]:
     if not isinstance(data, dict):
         raise ValueError(f"{p}: expected a YAML mapping at the top level, got {type(data).__name__}")
     return data
+
+
+def write_yaml(data: Mapping[str, Any], path: str | os.PathLike[str]) -> Path:
+    """Write a mapping as YAML (safe dumper, keys in the given order)."""
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    with p.open("w", encoding="utf-8") as fh:
+        yaml.safe_dump(dict(data), fh, sort_keys=False)
+    return p
+
+
+def write_csv(df: pd.DataFrame, path: str | os.PathLike[str]) -> Path:
+    """A results table as CSV (no index, 6 significant digits), creating the folder."""
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    df.to_csv(p, index=False, float_format="%.6g")
+    return p
+
+
+def read_csv_table(path: str | os.PathLike[str]) -> pd.DataFrame:
+    """A results table written by :func:`write_csv`."""
+    return pd.read_csv(Path(path))
 
 
 def read_study_config(

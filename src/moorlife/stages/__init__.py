@@ -1,0 +1,111 @@
+"""The stage layer: one module per Snakemake stage, each reading its inputs, calling the domain
+modules and writing its outputs.
+
+=================  =========================================================================
+module             rules (``workflow/rules/<stage>.smk``) -> function
+=================  =========================================================================
+``metocean``       ``metocean`` -> :func:`metocean.run`, ``metocean_figures`` -> ``figures``
+``selection``      ``selection`` -> :func:`selection.run`, ``discrete`` -> ``discrete``,
+                   ``selection_figures`` -> ``figures``
+``hydro``          ``hydro`` -> :func:`hydro.run`
+``simulate``       ``simulate_cases``, ``simulate_discrete``, ``sensitivity_seeds`` ->
+                   :func:`simulate.run`
+``lifecycle``      ``lifecycle`` -> :func:`lifecycle.run`, ``lifecycle_figures`` -> ``figures``
+``compare``        ``compare`` -> :func:`compare.run`, ``compare_figures`` -> ``figures``
+``sensitivity``    ``sensitivity_cases`` -> :func:`sensitivity.cases`, ``sensitivity`` ->
+                   :func:`sensitivity.run`
+=================  =========================================================================
+
+The layers: the domain modules (every module of :mod:`moorlife` outside ``io`` and
+``stages``, ``plots`` included) never import :mod:`moorlife.io` or :mod:`moorlife.stages`;
+:mod:`moorlife.io` holds formats and stores only; the stages sit on top of both, and only
+they (with :mod:`moorlife.io`) touch the disk. ``tests/test_structure.py`` enforces this.
+
+The adapter convention (every script in ``workflow/scripts/`` is one call)::
+
+    from moorlife.stages import simulate
+
+    def main(smk):
+        simulate.run(**smk.input, **smk.output, **smk.params, log=smk.log[0], threads=smk.threads,
+                     batch_size=smk.config["simulation"]["batch_size"])
+
+- every input the stage reads and every output is *named* in the rule, and the name is the
+  keyword of the stage function (inputs that only make Snakemake rerun the rule when a file
+  changes, such as the hindcast file or the WAMIT files, stay unnamed and are not passed);
+- every ``params:`` entry is a keyword of the stage function, named after its config section
+  where it is one (``simulation``, ``fatigue``, ...);
+- ``log=smk.log[0]`` always: the stage logs there (:func:`moorlife.io.log_to`);
+- ``threads=smk.threads`` where the rule declares ``threads:``, and wildcards the stage needs
+  by keyword (``ms=smk.wildcards.ms``);
+- settings that change scheduling or memory only, never the numbers (:data:`SCHEDULING_KEYS`),
+  are read from ``smk.config`` by the adapter and never put in ``params:``: a params change
+  makes Snakemake rerun the rule, and the stages keep them out of every store fingerprint too.
+  The rules' params hold :func:`result_settings` of their config sections instead.
+
+Each stage function also works without Snakemake (``log=None`` logs to the ``moorlife``
+logger only), which is how the tests call them.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import copy
+import logging
+import os
+from collections.abc import Iterator, Mapping
+from typing import Any
+
+__all__ = ["SCHEDULING_KEYS", "result_settings", "scheduling_free", "logged"]
+
+#: Config keys that change scheduling or memory only, never the numbers, per section, as key
+#: paths inside the section. Kept out of the rules' params and out of every fingerprint.
+SCHEDULING_KEYS: dict[str, tuple[tuple[str, ...], ...]] = {
+    "simulation": (("batch_size",),),
+    "lifecycle": (("rbf", "chunk_rows"),),
+}
+
+
+def scheduling_free(section: str, values: Mapping[str, Any] | None) -> dict[str, Any]:
+    """A deep copy of one config section without its :data:`SCHEDULING_KEYS`.
+
+    Parameters
+    ----------
+    section : str
+        The section's name (``simulation``, ``lifecycle``, ...).
+    values : mapping or None
+        The section (None: empty).
+    """
+    out = copy.deepcopy(dict(values or {}))
+    for path in SCHEDULING_KEYS.get(section, ()):
+        node: Any = out
+        for key in path[:-1]:
+            node = node.get(key) if isinstance(node, Mapping) else None
+        if isinstance(node, dict):
+            node.pop(path[-1], None)
+    return out
+
+
+def result_settings(config: Mapping[str, Any], section: str) -> dict[str, Any]:
+    """``config[section]`` without the keys that never change the numbers: a rule's params.
+
+    Parameters
+    ----------
+    config : mapping
+        The validated study config.
+    section : str
+        The section's name.
+    """
+    return scheduling_free(section, config.get(section, {}))
+
+
+@contextlib.contextmanager
+def logged(log: str | os.PathLike[str] | None, name: str = "moorlife.stages") -> Iterator[logging.Logger]:
+    """The logger ``name`` (a child of ``moorlife``), sent to the rule's log file when ``log`` is
+    a path (:func:`moorlife.io.log_to`: also BLAS limited to one thread inside the block)."""
+    if log is None:
+        yield logging.getLogger(name)
+        return
+    from moorlife.io import log_to
+
+    with log_to(log):
+        yield logging.getLogger(name)

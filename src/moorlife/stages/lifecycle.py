@@ -1,0 +1,107 @@
+"""Stage ``lifecycle``: every output of the simulated sea states rebuilt for every hindcast hour
+(Gaussian RBF), validated on the states kept aside, and summed over the hindcast (rules
+``lifecycle`` and ``lifecycle_figures``)."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from typing import Any
+
+import xarray as xr
+
+from moorlife import lifecycle as lc_mod
+from moorlife import names
+from moorlife.io import open_zarr, save_figure, write_zarr
+from moorlife.stages import logged
+
+__all__ = ["run", "figures"]
+
+PathLike = str | os.PathLike[str]
+
+
+def run(
+    *,
+    hindcast: PathLike,
+    cases: PathLike,
+    simulations: PathLike,
+    store: PathLike,
+    lifecycle: Mapping[str, Any],
+    fatigue: Mapping[str, Any],
+    chunk_rows: int | None = None,
+    threads: int | None = None,
+    log: PathLike | None = None,
+) -> xr.Dataset:
+    """``results/{ms}/lifecycle.zarr`` from the hindcast, the cases and the simulations.
+
+    Parameters
+    ----------
+    hindcast, cases, simulations : path-like
+        The hindcast, the selected sea states and their simulations.
+    store : path-like
+        The output store.
+    lifecycle, fatigue : mapping
+        The config sections of the same names.
+    chunk_rows : int, optional
+        Hindcast hours per RBF prediction block (``lifecycle.rbf.chunk_rows``, read from the
+        config by the adapter: memory only, never the numbers). Default: the section's value.
+    threads : int, optional
+        Caps the numba threads of the RBF prediction (the rule's ``threads``); the numbers do
+        not depend on it.
+    log : path-like, optional
+        The rule's log file.
+    """
+    import numba
+
+    with logged(log, __name__) as logger:
+        if threads:
+            numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
+        rbf_cfg = dict(lifecycle.get("rbf") or {})
+        if chunk_rows is not None:
+            rbf_cfg["chunk_rows"] = int(chunk_rows)
+        settings = lc_mod.rbf_settings(rbf_cfg, source="config.yaml")
+        ds = lc_mod.reconstruct_lifecycle(
+            open_zarr(hindcast), open_zarr(cases), open_zarr(simulations), settings=settings, fatigue_cfg=fatigue,
+            n_suggest=int(lifecycle.get("adaptive", {}).get("n_suggest", 50)),
+        )
+        for k in ("validation_r", "validation_rmse"):
+            if k in ds:
+                logger.info("%s: %s", k, {str(o): round(float(v), 4) for o, v in zip(ds["output"].values, ds[k].values)})
+        if "lifecycle_damage" in ds:
+            logger.info("life-cycle damage (curve x line):\n%s", ds["lifecycle_damage"].to_pandas())
+        chunks = {names.TIME: min(ds.sizes[names.TIME], 65536)}
+        enc = {v: {"chunks": tuple(chunks.get(d, ds.sizes[d]) for d in ds[v].dims)}
+               for v in ds.data_vars if names.TIME in ds[v].dims}
+        write_zarr(ds, store, encoding=enc)
+        return ds
+
+
+def figures(
+    *,
+    lifecycle: PathLike,
+    validation: PathLike,
+    loo_map: PathLike,
+    damage_metocean: PathLike,
+    ms: str,
+    log: PathLike | None = None,
+) -> None:
+    """Validation scatter (Figs. 10-13), LOO error map and damage vs metocean (Figs. 14-18) of one system.
+
+    Parameters
+    ----------
+    lifecycle : path-like
+        ``results/{ms}/lifecycle.zarr``.
+    validation, loo_map, damage_metocean : path-like
+        The three PNG files.
+    ms : str
+        The mooring system (figure titles).
+    log : path-like, optional
+        The rule's log file.
+    """
+    from moorlife.plots import lifecycle as plots
+
+    with logged(log, __name__):
+        ds = open_zarr(lifecycle)
+        save_figure(plots.validation_scatter(ds, title=ms), validation)
+        save_figure(plots.loo_error_map(ds, title=ms), loo_map)
+        save_figure(plots.damage_vs_metocean(ds, title=ms), damage_metocean)

@@ -1,0 +1,58 @@
+"""Shared fixtures: the study configuration, read and validated once per session.
+
+``study_config`` is ``config/config.yaml``; ``quick_config`` adds ``config/quick.yaml`` and
+``tiny_config`` adds ``tests/data/tiny.yaml`` on top (the workflow tests' overlays), each
+validated against the schema with its defaults filled in. Every test gets its own deep copy,
+so a test may edit it freely.
+"""
+
+from __future__ import annotations
+
+import copy
+import functools
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
+CONFIG = ROOT / "config" / "config.yaml"
+QUICK = ROOT / "config" / "quick.yaml"
+TINY = ROOT / "tests" / "data" / "tiny.yaml"
+
+
+@functools.cache
+def _study_config(*overlays: Path) -> dict[str, Any]:
+    from moorlife.io import read_study_config
+
+    return read_study_config(CONFIG, overlays, schema=SCHEMA)
+
+
+def study_config_with(*overlays: Path) -> dict[str, Any]:
+    """config.yaml plus ``overlays``, validated, defaults filled (a fresh deep copy)."""
+    return copy.deepcopy(_study_config(*overlays))
+
+
+@pytest.fixture()
+def study_config() -> dict[str, Any]:
+    """config/config.yaml, validated, defaults filled."""
+    return study_config_with()
+
+
+@pytest.fixture()
+def quick_config() -> dict[str, Any]:
+    """config/config.yaml + config/quick.yaml, validated, defaults filled."""
+    return study_config_with(QUICK)
+
+
+@pytest.fixture()
+def tiny_config() -> dict[str, Any]:
+    """config/config.yaml + config/quick.yaml + tests/data/tiny.yaml, validated, defaults filled."""
+    return study_config_with(QUICK, TINY)
+
+
+@pytest.fixture(scope="session")
+def study_config_factory():
+    """:func:`study_config_with` for module- or session-scoped fixtures: ``factory(*overlays)``."""
+    return study_config_with
