@@ -32,8 +32,9 @@ first offending row and value, or applies the configured cleaning policy and log
 Modules: :mod:`~moorlife.metocean.params` (the typed parameters),
 :mod:`~moorlife.metocean.synthetic` (the generator's kernels),
 :mod:`~moorlife.metocean.validation` (validation and cleaning),
-:mod:`~moorlife.metocean.adapters` (the contract Dataset), :mod:`~moorlife.metocean.build`
-(:func:`build_hindcast`) and :mod:`~moorlife.metocean.errors`.
+:mod:`~moorlife.metocean.adapters` (the contract Dataset) and :mod:`~moorlife.metocean.errors`.
+Building the study's hindcast from its config section (generate, or read a file through
+:mod:`moorlife.io.hindcast`) is the stage's job: :func:`moorlife.stages.metocean.build_hindcast`.
 """
 
 from __future__ import annotations
@@ -44,7 +45,6 @@ from moorlife.metocean.adapters import (
     WIND_VARS,
     hindcast_dataset,
 )
-from moorlife.metocean.build import build_hindcast
 from moorlife.metocean.errors import HindcastError
 from moorlife.metocean.params import (
     CleaningPolicy,
@@ -101,5 +101,4 @@ __all__ = [
     "generate_synthetic",
     "validate_hindcast",
     "hindcast_dataset",
-    "build_hindcast",
 ]

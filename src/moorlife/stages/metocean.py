@@ -14,6 +14,7 @@ import xarray as xr
 from moorlife import metocean
 from moorlife.io import open_zarr, save_figure, write_zarr
 from moorlife.io.hindcast import read_hindcast
+from moorlife.settings import fill_section
 from moorlife.stages import logged
 
 __all__ = ["build_hindcast", "run", "figures"]
@@ -41,11 +42,12 @@ def build_hindcast(cfg: Mapping[str, Any], seed: int, base_dir: str = ".") -> xr
     """
     if "hindcast" in cfg and isinstance(cfg["hindcast"], Mapping):
         cfg = cfg["hindcast"]
-    site = dict(cfg.get("site", {}))
+    cfg = fill_section("hindcast", cfg, source="hindcast")  # missing keys: the schema's defaults
+    site = cfg["site"]
     hub, alpha = float(cfg["hub_height"]), float(cfg["shear_exponent"])
-    common = {"site": site.get("name", ""), "lon": site.get("lon", np.nan), "lat": site.get("lat", np.nan), "hub_height": hub}
-    if cfg.get("source", "synthetic") == "synthetic":
-        params = metocean.SyntheticParams.from_mapping(cfg.get("synthetic"))
+    common = {"site": site["name"], "lon": site["lon"], "lat": site["lat"], "hub_height": hub}
+    if cfg["source"] == "synthetic":
+        params = metocean.SyntheticParams.from_config(cfg["synthetic"])
         time = metocean.hourly_time(cfg["start"], cfg["end"])
         out = metocean.generate_synthetic(time, params, seed, hub, alpha)
         log.info(
@@ -56,7 +58,7 @@ def build_hindcast(cfg: Mapping[str, Any], seed: int, base_dir: str = ".") -> xr
             time, out, source=f"moorlife synthetic BiMEP-like hindcast (seed {seed})",
             extra_attrs={"wind_reference_height": params.reference_height, "shear_exponent": alpha}, **common,
         )
-    if cfg.get("source") != "file":
+    if cfg["source"] != "file":
         raise metocean.HindcastError(f"hindcast.source = {cfg.get('source')!r}: expected 'synthetic' or 'file'")
     if not cfg.get("path"):
         raise metocean.HindcastError("hindcast.source is 'file' but hindcast.path is not set")
@@ -67,10 +69,10 @@ def build_hindcast(cfg: Mapping[str, Any], seed: int, base_dir: str = ".") -> xr
         hub_height=hub,
         shear_exponent=alpha,
         columns=cfg.get("columns"),
-        fmt=cfg.get("format", "auto"),
+        fmt=cfg["format"],
         measured_height=cfg.get("measured_height"),
-        wave_dir_convention=cfg.get("wave_dir_convention", "auto"),
-        cleaning=metocean.CleaningPolicy.from_mapping(cfg.get("cleaning")),
+        wave_dir_convention=cfg["wave_dir_convention"],
+        cleaning=metocean.CleaningPolicy.from_config(cfg["cleaning"]),
         site=common["site"],
         lon=common["lon"],
         lat=common["lat"],
