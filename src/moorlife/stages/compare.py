@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from moorlife.settings import fill_section
 from moorlife import fatigue as fatigue_mod
 from moorlife import lifecycle as lc_mod
 from moorlife import names
@@ -91,11 +92,11 @@ def run(
                                     and v not in ("surge_mpm", "tension_mpm")]).load()
             dds[ms] = lc_mod.discrete_damage_table(states, open_zarr(dp), lc.attrs["n_hours"])
         cv = _seed_cv(seeds)
-        rec_cfg = dict(lifecycle.get("recommendation", {}))
-        corr = fatigue_mod.fatigue_settings(fatigue) if rec_cfg.get("corrosion", False) else None
-        table = lc_mod.summary_table(lcs, dds, mooring, seed_cv=cv, corrosion=corr,
-                                     coverage=float(lifecycle.get("uncertainty", {}).get("coverage", 1.0)))
-        curves = list(rec_cfg.get("curves", ["sn", "tn"]))
+        rec_cfg = fill_section("lifecycle.recommendation", lifecycle.get("recommendation"))
+        coverage = float(fill_section("lifecycle.uncertainty", lifecycle.get("uncertainty"))["coverage"])
+        corr = fatigue_mod.fatigue_settings(fatigue) if rec_cfg["corrosion"] else None
+        table = lc_mod.summary_table(lcs, dds, mooring, seed_cv=cv, corrosion=corr, coverage=coverage)
+        curves = list(rec_cfg["curves"])
         rec = lc_mod.recommend(table, curves=curves)
         write_csv(table, summary)
         info = {

@@ -10,6 +10,7 @@ from typing import Any
 
 import xarray as xr
 
+from moorlife.settings import fill_section
 from moorlife import lifecycle as lc_mod
 from moorlife import names
 from moorlife.io import open_zarr, save_figure, write_zarr
@@ -62,7 +63,7 @@ def run(
         settings = lc_mod.rbf_settings(rbf_cfg, source="config.yaml")
         ds = lc_mod.reconstruct_lifecycle(
             open_zarr(hindcast), open_zarr(cases), open_zarr(simulations), settings=settings, fatigue_cfg=fatigue,
-            n_suggest=int(lifecycle.get("adaptive", {}).get("n_suggest", 50)),
+            n_suggest=int(fill_section("lifecycle.adaptive", lifecycle.get("adaptive"))["n_suggest"]),
         )
         for k in ("validation_r", "validation_rmse"):
             if k in ds:

@@ -14,6 +14,7 @@ from typing import Any
 import xarray as xr
 
 import moorlife
+from moorlife.settings import SimulationSettings
 from moorlife import simulate
 from moorlife.config import fingerprint
 from moorlife.io import open_zarr
@@ -108,7 +109,8 @@ def run(
         The completed store (also written to ``store``).
     """
     sim_cfg = scheduling_free("simulation", simulation)
-    bs = int(batch_size if batch_size is not None else dict(simulation).get("batch_size", 8))
+    settings = SimulationSettings.from_config(simulation, source="simulation")
+    bs = int(batch_size if batch_size is not None else settings.batch_size)
     with logged(log, __name__) as logger:
         cs = open_zarr(cases)
         if dim not in cs.dims:
@@ -124,6 +126,6 @@ def run(
         kwargs = dict(mooring_system=ms, seed=int(seed), stream=dim, model_inputs=model, sim_cfg=sim_cfg,
                       fatigue_cfg=dict(fatigue or {}), stats_cfg=dict(statistics or {}))
         attrs = {"mooring_system": ms, "mooring_model": model.mooring_kind, "seed": int(seed),
-                 "duration": float(sim_cfg.get("duration", 3600.0)), "dt": float(sim_cfg.get("dt", 0.1))}
+                 "duration": settings.duration, "dt": settings.dt}
         return map_cases(simulate.simulate_batch, cs, store, dim=dim, func_kwargs=kwargs, batch_size=bs,
                          fingerprint=fp, threads=threads, log=logger, attrs=attrs, attrs_of=simulate.output_attrs)
