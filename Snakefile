@@ -21,6 +21,7 @@ include: "workflow/rules/hydro.smk"
 include: "workflow/rules/simulate.smk"
 include: "workflow/rules/lifecycle.smk"
 include: "workflow/rules/compare.smk"
+include: "workflow/rules/truth.smk"
 
 
 # Light gather rules run on the submit host under a cluster executor.
