@@ -37,12 +37,11 @@ def truth_scatter(cmp: xr.Dataset, *, title: str = "") -> Figure:
         ax.scatter(t, r, s=4, alpha=0.5, color="tab:blue", edgecolors="none")
         lo, hi = float(np.nanmin([t.min(), r.min()])), float(np.nanmax([t.max(), r.max()]))
         ax.plot([lo, hi], [lo, hi], color="k", lw=0.8)
-        if lab.startswith("damage"):
-            if lo > 0:
-                ax.set_xscale("log")
-                ax.set_yscale("log")
-                for axis in (ax.xaxis, ax.yaxis):
-                    axis.set_minor_formatter(NullFormatter())
+        if lab.startswith("damage") and lo > 0:
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            for axis in (ax.xaxis, ax.yaxis):
+                axis.set_minor_formatter(NullFormatter())
         text = f"r = {float(cmp['r'].values[j]):.3f}"
         if "noise_r" in cmp:
             text += f"\nseeds r = {float(cmp['noise_r'].values[j]):.3f}"
