@@ -23,6 +23,7 @@ include: "workflow/rules/lifecycle.smk"
 include: "workflow/rules/compare.smk"
 include: "workflow/rules/report.smk"
 include: "workflow/rules/sensitivity.smk"
+include: "workflow/rules/truth.smk"
 
 
 # The report opens on the answer: workflow/report/workflow.rst includes the overview that rule

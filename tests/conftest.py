@@ -56,3 +56,14 @@ def tiny_config() -> dict[str, Any]:
 def study_config_factory():
     """:func:`study_config_with` for module- or session-scoped fixtures: ``factory(*overlays)``."""
     return study_config_with
+
+
+@pytest.fixture(scope="session")
+def study(tmp_path_factory) -> Path:
+    """The tiny study (``config/quick.yaml`` + ``tests/data/tiny.yaml``), the full DAG built once
+    in a temporary copy of the repo; tests that change it copy it first (``clone_study``)."""
+    from test_workflow import copy_repo, smk
+
+    work = copy_repo(tmp_path_factory.mktemp("study"))
+    smk(work)
+    return work

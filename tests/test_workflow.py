@@ -1,6 +1,7 @@
 """The Snakemake workflow end to end, on tests/data/tiny.yaml, in a temporary copy of the repo.
 
-One session-scoped study is built once (the full DAG); the other tests copy it (with its
+One session-scoped study (``study`` in conftest.py) is built once (the full DAG); the other
+tests, here and in test_truth.py, copy it (with its
 .snakemake metadata, so nothing is rebuilt needlessly) and exercise one behaviour each.
 """
 
@@ -60,13 +61,6 @@ def stores(workdir: Path) -> dict[str, float]:
         if p.suffix in {".zarr", ".nc", ".csv", ".png"} and ".partial" not in p.parts:
             out[str(p.relative_to(workdir))] = p.stat().st_mtime
     return out
-
-
-@pytest.fixture(scope="session")
-def study(tmp_path_factory) -> Path:
-    work = copy_repo(tmp_path_factory.mktemp("study"))
-    smk(work)
-    return work
 
 
 def clone_study(study: Path, dst: Path) -> Path:

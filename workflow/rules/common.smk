@@ -64,6 +64,16 @@ def _hydro_inputs(wildcards):
     return [f"{prefix}.{e}" for e in exts]
 
 
+def truth_checked_hindcast(wildcards):
+    """The hindcast (input of truth_hours), after checking the truth keys (names key and value)."""
+    from moorlife.truth import check_window
+
+    t, h = config["truth"], config["hindcast"]
+    check_window(t["window"]["start"], t["window"]["end"], t["stride"], t["n_second_seed"],
+                 hindcast_start=h["start"], hindcast_end=h["end"], source=_cfg_sources)
+    return "results/metocean/hindcast.zarr"
+
+
 def _outputs(*rule_objs):
     return [str(f) for r in rule_objs for f in r.output]
 

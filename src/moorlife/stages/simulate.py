@@ -41,14 +41,16 @@ def store_fingerprint(
     platform_cfg: Mapping[str, Any],
     cases: xr.Dataset,
     platform: xr.Dataset,
+    stream: str | None = None,
 ) -> str:
     """The digest of everything that determines the numbers of a simulation store.
 
     Scheduling settings (``simulation.batch_size``) are left out, so changing them keeps a
-    partial store. ``row`` is the mooring-system table row including ``mooring_system``.
+    partial store. ``row`` is the mooring-system table row including ``mooring_system``;
+    ``stream`` another random stream than the dimension (the truth target).
     """
     return fingerprint(
-        "simulate-v2", dim, moorlife.__version__, ms, dict(row), int(seed), scheduling_free("simulation", simulation),
+        "simulate-v2", dim if stream in (None, dim) else f"{dim}/{stream}", moorlife.__version__, ms, dict(row), int(seed), scheduling_free("simulation", simulation),
         dict(mooring or {}), dict(fatigue or {}), dict(statistics or {}), platform_cfg, dataset_digest(cases),
         dataset_digest(platform),
     )
@@ -69,6 +71,7 @@ def run(
     fatigue: Mapping[str, Any] | None = None,
     statistics: Mapping[str, Any] | None = None,
     batch_size: int | None = None,
+    stream: str | None = None,
     threads: int = 1,
     log: PathLike | None = None,
 ) -> xr.Dataset:
@@ -97,7 +100,11 @@ def run(
         may be None or empty: defaults).
     batch_size : int, optional
         Sea states per Dask task (``simulation.batch_size``, read from the config by the
-        adapter; scheduling only). Default: ``simulation["batch_size"]``, else 8.
+        adapter; scheduling only). Default: ``simulation["batch_size"]``.
+    stream : str, optional
+        The random stream of the phases (:func:`moorlife.conventions.case_rng`); the default is
+        the dimension, as for ``simulations.zarr`` and ``discrete.zarr``. Another name (the truth
+        target's ``"truth"``) gives every id phases independent of the case or bin with that id.
     threads : int
         Dask workers of the LocalCluster (the rule's threads).
     log : path-like, optional
@@ -122,10 +129,12 @@ def run(
         logger.info("%s: %s mooring, %d sea states along %r", ms, model.mooring_kind, cs.sizes[dim], dim)
         fp = store_fingerprint(dim=dim, ms=ms, row=full_row, seed=seed, simulation=sim_cfg, mooring=mooring,
                                fatigue=fatigue, statistics=statistics, platform_cfg=pcfg, cases=cs,
-                               platform=platform_ds)
-        kwargs = dict(mooring_system=ms, seed=int(seed), stream=dim, model_inputs=model, sim_cfg=sim_cfg,
+                               platform=platform_ds, stream=stream)
+        kwargs = dict(mooring_system=ms, seed=int(seed), stream=dim if stream is None else str(stream), model_inputs=model, sim_cfg=sim_cfg,
                       fatigue_cfg=dict(fatigue or {}), stats_cfg=dict(statistics or {}))
         attrs = {"mooring_system": ms, "mooring_model": model.mooring_kind, "seed": int(seed),
                  "duration": settings.duration, "dt": settings.dt}
+        if stream not in (None, dim):  # the default stores keep their attributes unchanged
+            attrs["random_stream"] = str(stream)
         return map_cases(simulate.simulate_batch, cs, store, dim=dim, func_kwargs=kwargs, batch_size=bs,
                          fingerprint=fp, threads=threads, log=logger, attrs=attrs, attrs_of=simulate.output_attrs)

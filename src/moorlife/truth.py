@@ -1,0 +1,438 @@
+"""Ground truth: every hour of a window simulated, and the life-cycle method measured against it.
+
+The truth target simulates every hindcast hour of a configured window (``truth.window``, every
+``truth.stride``-th hour) with the simulate stage as it is, each hour with random phases of its
+own stream (``"truth"``, case id = the hour's position in the hindcast), and a second seed
+(stream ``"truth_seed2"``) on an evenly spaced subset of ``truth.n_second_seed`` hours. This
+module holds the arithmetic of that comparison, numpy in and numpy out:
+
+* the hours of the window (:func:`window_indices`) and the check of the ``truth`` keys against
+  the study period (:func:`check_window`), run before any simulation;
+* the second-seed subset (:func:`second_seed_subset`);
+* the per-hour agreement of the reconstruction with the truth (:func:`hourly_agreement`:
+  Pearson r, RMSE, bias = mean of reconstruction - truth);
+* the 35-bin method applied to the window's own hours (:func:`hour_bins`,
+  :func:`bin_damage_per_hour`, :func:`window_bin_damage`): each hour takes the hourly damage of
+  the scatter-matrix bin it falls in, with the bin rule of :func:`moorlife.selection.scatter_matrix`;
+* signed errors in % (:func:`signed_error_pct`) and the seed noise floor
+  (:func:`noise_floor`).
+
+:func:`compare_window` is the xarray adapter used by :mod:`moorlife.stages.truth`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import numpy.typing as npt
+import pandas as pd
+import xarray as xr
+
+from moorlife import lifecycle, names, selection
+
+__all__ = [
+    "TRUTH_STREAM",
+    "SEED2_STREAM",
+    "check_window",
+    "window_indices",
+    "second_seed_subset",
+    "hourly_agreement",
+    "hour_bins",
+    "bin_damage_per_hour",
+    "window_bin_damage",
+    "signed_error_pct",
+    "noise_floor",
+    "compare_window",
+]
+
+#: Random stream of the truth hours (``moorlife.conventions.case_rng``): independent of the
+#: ``"case"`` stream of the training and validation states and of the ``"bin"`` stream.
+TRUTH_STREAM = "truth"
+#: Random stream of the second seed of the noise-floor subset.
+SEED2_STREAM = "truth_seed2"
+_HOUR = np.timedelta64(1, "h")
+
+
+def _timestamp(value: object, key: str, source: str) -> pd.Timestamp:
+    try:
+        t = pd.Timestamp(str(value))
+    except (ValueError, TypeError) as exc:
+        raise ValueError(f"{source}: config key '{key}' = {value!r} is not an ISO 8601 time ({exc})") from None
+    if t is pd.NaT:
+        raise ValueError(f"{source}: config key '{key}' = {value!r} is not an ISO 8601 time")
+    return t
+
+
+def check_window(
+    start: object,
+    end: object,
+    stride: int,
+    n_second_seed: int,
+    *,
+    hindcast_start: object,
+    hindcast_end: object,
+    source: str = "config",
+) -> int:
+    """Check the ``truth`` keys against the study period; return the number of truth hours.
+
+    Parameters
+    ----------
+    start, end : str
+        ``truth.window.start`` / ``truth.window.end`` (ISO 8601, UTC, both inclusive).
+    stride : int
+        ``truth.stride``: every ``stride``-th hour of the window is simulated.
+    n_second_seed : int
+        ``truth.n_second_seed``: hours simulated with a second seed.
+    hindcast_start, hindcast_end : str
+        ``hindcast.start`` / ``hindcast.end``, the hourly study period.
+    source : str
+        Where the configuration came from, quoted in the message.
+
+    Returns
+    -------
+    int
+        The hours of the hourly study period inside the window, every ``stride``-th.
+
+    Raises
+    ------
+    ValueError
+        Naming the key and its value: a window outside the hindcast, an empty window (end
+        before start, or no whole hour inside), a stride below 1, or more second-seed hours
+        than truth hours.
+    """
+    if isinstance(stride, bool) or int(stride) != stride or int(stride) < 1:
+        raise ValueError(f"{source}: config key 'truth.stride' = {stride!r} is invalid: it must be an integer >= 1")
+    t0 = _timestamp(start, "truth.window.start", source)
+    t1 = _timestamp(end, "truth.window.end", source)
+    h0 = _timestamp(hindcast_start, "hindcast.start", source)
+    h1 = _timestamp(hindcast_end, "hindcast.end", source)
+    if t1 < t0:
+        raise ValueError(f"{source}: config key 'truth.window.end' = {end!r} is before truth.window.start = "
+                         f"{start!r}: the truth window is empty")
+    if t0 < h0 or t0 > h1:
+        raise ValueError(f"{source}: config key 'truth.window.start' = {start!r} is outside the hindcast "
+                         f"{hindcast_start} .. {hindcast_end} (hindcast.start/end)")
+    if t1 > h1:
+        raise ValueError(f"{source}: config key 'truth.window.end' = {end!r} is outside the hindcast "
+                         f"{hindcast_start} .. {hindcast_end} (hindcast.start/end)")
+    hours = h0.to_datetime64() + np.arange(int((h1 - h0) / pd.Timedelta(hours=1)) + 1) * _HOUR
+    n = window_indices(hours, t0.to_datetime64(), t1.to_datetime64(), int(stride), source=source).size
+    n2 = int(n_second_seed)
+    if n2 > n:
+        raise ValueError(f"{source}: config key 'truth.n_second_seed' = {n_second_seed!r} is larger than the "
+                         f"{n} hours of the truth window")
+    return n
+
+
+def window_indices(
+    times: npt.ArrayLike, start: np.datetime64, end: np.datetime64, stride: int = 1, *, source: str = "hindcast"
+) -> np.ndarray:
+    """Positions along the hindcast's ``time`` of the truth hours.
+
+    Parameters
+    ----------
+    times : array_like of datetime64, shape (N,)
+        The hindcast's hourly time stamps, increasing.
+    start, end : numpy.datetime64
+        The window, both ends inclusive.
+    stride : int
+        Every ``stride``-th hour of the window, from its first.
+
+    Returns
+    -------
+    numpy.ndarray of int64
+        Increasing positions into ``times``.
+
+    Raises
+    ------
+    ValueError
+        If the stride is below 1 or no hour of ``times`` lies in the window.
+    """
+    if int(stride) < 1:
+        raise ValueError(f"config key 'truth.stride' = {stride!r} is invalid: it must be >= 1")
+    t = np.asarray(times, dtype="datetime64[ns]")
+    inside = np.flatnonzero((t >= np.datetime64(start, "ns")) & (t <= np.datetime64(end, "ns")))
+    if inside.size == 0:
+        raise ValueError(f"{source}: no hour of the hindcast lies in the truth window {start} .. {end} "
+                         "(truth.window.start/end)")
+    return inside[:: int(stride)].astype(np.int64)
+
+
+def second_seed_subset(n: int, k: int) -> np.ndarray:
+    """``k`` evenly spaced positions in ``range(n)``, first and last included.
+
+    Position ``i`` is ``round(i (n - 1) / (k - 1))`` in exact integer arithmetic (halves up),
+    so the subset depends only on ``n`` and ``k``.
+
+    Raises
+    ------
+    ValueError
+        If ``k`` is not in ``1..n``.
+    """
+    n, k = int(n), int(k)
+    if not 1 <= k <= n:
+        raise ValueError(f"config key 'truth.n_second_seed' = {k} must be between 1 and the {n} truth hours")
+    if k == 1:
+        return np.zeros(1, dtype=np.int64)
+    i = np.arange(k, dtype=np.int64)
+    return (2 * i * (n - 1) + (k - 1)) // (2 * (k - 1))
+
+
+def hourly_agreement(truth: npt.ArrayLike, reconstruction: npt.ArrayLike) -> dict[str, np.ndarray]:
+    """Per-output agreement of the reconstruction with the simulated truth.
+
+    Parameters
+    ----------
+    truth, reconstruction : array_like, shape (n, k)
+        ``n`` hours, ``k`` outputs.
+
+    Returns
+    -------
+    dict
+        ``r`` (Pearson correlation), ``rmse``, ``bias`` (mean of reconstruction - truth),
+        ``sum_error`` (reconstruction sum / truth sum - 1); each shape ``(k,)``. The same
+        definitions as the validation metrics of :func:`moorlife.lifecycle.validation_metrics`.
+    """
+    m = lifecycle.validation_metrics(reconstruction, truth)
+    return {k: m[k] for k in ("r", "rmse", "bias", "sum_error")}
+
+
+def hour_bins(
+    hs: npt.ArrayLike,
+    wind_speed: npt.ArrayLike,
+    tp: npt.ArrayLike,
+    *,
+    hs_edges: Sequence[float],
+    wind_edges: Sequence[float],
+    tp_edges: Sequence[float],
+    bin_classes: npt.ArrayLike,
+) -> np.ndarray:
+    """The scatter-matrix bin of each hour.
+
+    Parameters
+    ----------
+    hs, wind_speed, tp : array_like, shape (n,)
+        The hours' sea states (m, m/s, s).
+    hs_edges, wind_edges, tp_edges : sequence of float
+        The lower class edges of ``results/selection/discrete.zarr`` (its attributes).
+    bin_classes : array_like of int, shape (K, 3)
+        The (Hs, W, Tp) class indices of the K non-empty bins (``hs_class``, ``wind_class``,
+        ``tp_class`` of ``discrete.zarr``).
+
+    Returns
+    -------
+    numpy.ndarray of int64, shape (n,)
+        Position of each hour's bin in ``bin_classes``. Classes follow
+        :func:`moorlife.selection.scatter_matrix`: ``edges[k] <= value < edges[k + 1]``,
+        the last class open.
+
+    Raises
+    ------
+    ValueError
+        If an hour falls in a class that is not one of the bins (it was not in the hindcast
+        the bins were made from), or below the first edge.
+    """
+    e = [selection._check_edges(v, k) for v, k in ((hs_edges, "hs_edges"), (wind_edges, "wind_edges"),
+                                                   (tp_edges, "tp_edges"))]
+    cls = [selection._classify(np.asarray(a, dtype=float).reshape(-1), ee, name)
+           for a, ee, name in ((hs, e[0], "hs"), (wind_speed, e[1], "wind_speed"), (tp, e[2], "tp"))]
+    shape = tuple(ee.size for ee in e)
+    flat = np.ravel_multi_index(tuple(cls), shape)
+    bc = np.asarray(bin_classes, dtype=np.int64).reshape(-1, 3)
+    lookup = np.full(int(np.prod(shape)), -1, dtype=np.int64)
+    lookup[np.ravel_multi_index(tuple(bc.T), shape)] = np.arange(bc.shape[0])
+    out = lookup[flat]
+    if (out < 0).any():
+        i = int(np.flatnonzero(out < 0)[0])
+        raise ValueError(f"hour {i} (hs {float(np.ravel(hs)[i])!r}, wind_speed {float(np.ravel(wind_speed)[i])!r}, "
+                         f"tp {float(np.ravel(tp)[i])!r}) falls in a class with no bin of the scatter matrix")
+    return out
+
+
+def bin_damage_per_hour(bins: npt.ArrayLike, bin_damage: npt.ArrayLike) -> np.ndarray:
+    """The hourly damage the 35-bin method gives each hour: its bin's, shape ``(n, ...)``."""
+    return np.asarray(bin_damage, dtype=float)[np.asarray(bins, dtype=np.int64)]
+
+
+def window_bin_damage(bins: npt.ArrayLike, bin_damage: npt.ArrayLike) -> np.ndarray:
+    """The 35-bin damage of a window: ``sum_b (window hours in bin b) x hourly damage of bin b``.
+
+    Parameters
+    ----------
+    bins : array_like of int, shape (n,)
+        The bin of each window hour (:func:`hour_bins`).
+    bin_damage : array_like, shape (K, ...)
+        Hourly damage of each bin's representative state (``results/{ms}/discrete.zarr``).
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
+    """
+    d = np.asarray(bin_damage, dtype=float)
+    hours = np.bincount(np.asarray(bins, dtype=np.int64), minlength=d.shape[0]).astype(float)
+    return np.tensordot(hours, d, axes=(0, 0))
+
+
+def signed_error_pct(estimate: npt.ArrayLike, truth: npt.ArrayLike) -> np.ndarray:
+    """``100 (estimate - truth) / truth``: > 0 when the estimate overestimates the truth."""
+    t = np.asarray(truth, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return 100.0 * (np.asarray(estimate, dtype=float) - t) / t
+
+
+def noise_floor(seed1: npt.ArrayLike, seed2: npt.ArrayLike, n_window: int | None = None) -> dict[str, np.ndarray]:
+    """The noise floor of one realisation per hour, from two seeds of the same hours.
+
+    Parameters
+    ----------
+    seed1, seed2 : array_like, shape (m, k)
+        The same ``m`` hours simulated with two independent random streams.
+    n_window : int, optional
+        Hours of the whole window; default ``m``.
+
+    Returns
+    -------
+    dict
+        ``r`` (k,): correlation of the two seeds, the best per-hour r any reconstruction can
+        reach against one realisation per hour; ``sum_difference_pct`` (k,):
+        ``100 (sum seed2 - sum seed1) / sum seed1`` over the subset; ``sum_std_pct`` (k,):
+        the seed scatter (one standard deviation) of a sum over ``n_window`` hours, in % of
+        ``n_window`` times the subset's mean, estimated from the per-hour seed variance
+        ``(x1 - x2)^2 / 2``: ``100 sqrt(n_window mean((x1 - x2)^2 / 2)) / (n_window mean(x1, x2))``.
+    """
+    a = np.atleast_2d(np.asarray(seed1, dtype=float).T).T
+    b = np.atleast_2d(np.asarray(seed2, dtype=float).T).T
+    if a.shape != b.shape:
+        raise ValueError(f"seed1 {a.shape} and seed2 {b.shape} differ in shape")
+    n = a.shape[0] if n_window is None else int(n_window)
+    r = lifecycle.validation_metrics(b, a)["r"]
+    var = 0.5 * np.mean((a - b) ** 2, axis=0)
+    mean = 0.5 * (a.mean(axis=0) + b.mean(axis=0))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        std_pct = 100.0 * np.sqrt(n * var) / (n * mean)
+    return {"r": r, "sum_difference_pct": signed_error_pct(b.sum(axis=0), a.sum(axis=0)), "sum_std_pct": std_pct}
+
+
+# --------------------------------------------------------------------------- xarray adapter
+
+
+def _a(long_name: str, units: str = "1") -> dict[str, str]:
+    return {"units": units, "long_name": long_name}
+
+
+def compare_window(
+    truth: xr.Dataset,
+    reconstruction: xr.Dataset,
+    discrete_states: xr.Dataset,
+    discrete_sims: xr.Dataset,
+    *,
+    outputs: Sequence[str],
+    seed2: xr.Dataset | None = None,
+) -> xr.Dataset:
+    """Compare the reconstruction with the simulated truth on the window.
+
+    Parameters
+    ----------
+    truth : xarray.Dataset
+        ``results/{ms}/truth.zarr`` (dims ``case``, ``line``; ``hindcast_index``).
+    reconstruction : xarray.Dataset
+        ``results/{ms}/lifecycle.zarr`` (dims ``time``, ``line``).
+    discrete_states, discrete_sims : xarray.Dataset
+        ``results/selection/discrete.zarr`` and ``results/{ms}/discrete.zarr``.
+    outputs : sequence of str
+        The outputs compared (``lifecycle.rbf.outputs``); those missing from either store are skipped.
+    seed2 : xarray.Dataset, optional
+        ``results/{ms}/truth_seed2.zarr``: a subset of the hours with a second seed.
+
+    Returns
+    -------
+    xarray.Dataset
+        Per ``output``: ``r``, ``rmse``, ``bias``, ``sum_error`` and the noise floor
+        ``noise_r``; per ``curve`` and ``line``: ``truth_damage``, ``reconstruction_damage``,
+        ``bins_damage``, ``reconstruction_error_pct``, ``bins_error_pct``,
+        ``seed_sum_std_pct`` and ``seed_sum_difference_pct``; per ``hour``: the truth and
+        reconstructed values and the cumulative damage of the three.
+    """
+    c = names.CASE
+    idx = np.asarray(truth["hindcast_index"].values, dtype=np.int64)
+    n_time = reconstruction.sizes[names.TIME]
+    if idx.size == 0 or idx.min() < 0 or idx.max() >= n_time:
+        raise ValueError(f"truth hours' hindcast_index span {idx.min()}..{idx.max()} is outside the "
+                         f"reconstruction's {n_time} hours")
+    rec = reconstruction.isel({names.TIME: idx})
+    for v in names.METOCEAN_VARS:  # the truth hours are the reconstruction's hours
+        if v in rec and not np.allclose(rec[v].values, truth[v].values, rtol=1e-6, atol=1e-9):
+            raise ValueError(f"truth.zarr and lifecycle.zarr disagree on {v} at the same hindcast hours: "
+                             "built from different hindcasts")
+    cols = [col for col in lifecycle.output_columns(truth, c, outputs) if col[0] in reconstruction]
+    labels = [lifecycle._label(col) for col in cols]
+    y_true = lifecycle.stack_outputs(truth, c, cols)
+    y_rec = lifecycle.stack_outputs(rec.rename({names.TIME: c}), c, cols)
+    agree = hourly_agreement(y_true, y_rec)
+
+    hour_coords = {"hour": np.arange(idx.size), "hindcast_index": ("hour", idx)}
+    if names.TIME in rec.coords:
+        hour_coords[names.TIME] = ("hour", rec[names.TIME].values)
+    out = xr.Dataset(coords={"output": labels, **hour_coords})
+    for k, text in (("r", "Pearson r of reconstruction and truth over the window's hours"),
+                    ("rmse", "RMSE of reconstruction - truth"), ("bias", "mean of reconstruction - truth"),
+                    ("sum_error", "reconstruction sum / truth sum - 1")):
+        out[k] = ("output", agree[k], _a(text))
+    out["truth"] = (("hour", "output"), y_true, _a("simulated truth of each output at each window hour"))
+    out["reconstruction"] = (("hour", "output"), y_rec, _a("reconstructed value (lifecycle.zarr) at each window hour"))
+
+    noise = None
+    if seed2 is not None and seed2.sizes.get(c, 0) >= 2:
+        pos = np.searchsorted(idx, np.asarray(seed2["hindcast_index"].values, dtype=np.int64))
+        if np.any(pos >= idx.size) or np.any(idx[np.minimum(pos, idx.size - 1)] != seed2["hindcast_index"].values):
+            raise ValueError("truth_seed2.zarr holds hours that are not truth hours")
+        y2 = lifecycle.stack_outputs(seed2, c, cols)
+        noise = noise_floor(y_true[pos], y2, n_window=idx.size)
+        out = out.assign_coords(seed2_hour=("seed2_hour", idx[pos]))
+        out["noise_r"] = ("output", noise["r"], _a(f"r of two seeds on {pos.size} hours: the noise floor"))
+
+    curves = [cv for cv in names.CURVES if lifecycle.DAMAGE_VARS[cv] in truth and lifecycle.DAMAGE_VARS[cv] in rec]
+    if curves:
+        a = discrete_states.attrs
+        classes = np.column_stack([discrete_states[f"{ax}_class"].values for ax in ("hs", "wind", "tp")])
+        bins = hour_bins(truth["hs"].values, truth["wind_speed"].values, truth["tp"].values, hs_edges=a["hs_edges"],
+                         wind_edges=a["wind_edges"], tp_edges=a["tp_edges"], bin_classes=classes)
+        lines = [str(v) for v in truth[names.LINE].values]
+        b = names.BIN
+        sims = discrete_sims.sel({b: discrete_states[b].values})
+        t_h, r_h, b_h, tot = [], [], [], {"truth": [], "rec": [], "bins": []}
+        for cv in curves:
+            var = lifecycle.DAMAGE_VARS[cv]
+            th = truth[var].transpose(c, names.LINE).sel({names.LINE: lines}).values
+            rh = np.clip(rec[var].transpose(names.TIME, names.LINE).sel({names.LINE: lines}).values, 0, None)
+            bd = sims[var].transpose(b, names.LINE).sel({names.LINE: lines}).values
+            bh = bin_damage_per_hour(bins, bd)
+            t_h.append(th), r_h.append(rh), b_h.append(bh)
+            tot["truth"].append(lifecycle.life_damage(th))
+            tot["rec"].append(lifecycle.life_damage(rh))
+            tot["bins"].append(window_bin_damage(bins, bd))
+        cd = (names.CURVE, names.LINE)
+        out = out.assign_coords({names.CURVE: curves, names.LINE: lines})
+        out["bin"] = ("hour", bins, _a("scatter-matrix bin of each window hour (results/selection/discrete.zarr)"))
+        t_tot, r_tot, b_tot = (np.stack(tot[k]) for k in ("truth", "rec", "bins"))
+        out["truth_damage"] = (cd, t_tot, _a(f"damage summed over the {idx.size} truth hours (simulated)"))
+        out["reconstruction_damage"] = (cd, r_tot, _a("damage summed over the truth hours (lifecycle.zarr, clipped at 0)"))
+        out["bins_damage"] = (cd, b_tot, _a("35-bin method: window hours in each bin x the bin's hourly damage"))
+        out["reconstruction_error_pct"] = (cd, signed_error_pct(r_tot, t_tot), _a("100 (reconstruction - truth) / truth", "%"))
+        out["bins_error_pct"] = (cd, signed_error_pct(b_tot, t_tot), _a("100 (bins - truth) / truth", "%"))
+        hcd = (names.CURVE, "hour", names.LINE)
+        for key, arr, text in (("truth_cumulative", t_h, "cumulative truth damage"),
+                               ("reconstruction_cumulative", r_h, "cumulative reconstructed damage"),
+                               ("bins_cumulative", b_h, "cumulative 35-bin damage")):
+            out[key] = (hcd, np.cumsum(np.stack(arr), axis=1), _a(text))
+        if noise is not None:
+            pos_of = {lab: j for j, lab in enumerate(labels)}
+            for key, text in (("sum_std_pct", "seed scatter (1 sd) of the window's damage sum, % of the sum"),
+                              ("sum_difference_pct", "100 (seed2 - seed1) / seed1 of the damage sum over the seed2 hours")):
+                vals = np.array([[noise[key][pos_of[f"{lifecycle.DAMAGE_VARS[cv]}/{ln}"]] for ln in lines] for cv in curves])
+                out[f"seed_{key}"] = (cd, vals, _a(text, "%"))
+    out.attrs.update({"n_hours": int(idx.size), "n_seed2": int(0 if noise is None else out.sizes["seed2_hour"]),
+                      "mooring_system": str(truth.attrs.get("mooring_system", "")),
+                      "random_stream": str(truth.attrs.get("random_stream", ""))})
+    return out

@@ -1,0 +1,15 @@
+"""Rule truth_compare: truth, lifecycle and bins of one system -> truth_comparison.zarr/.csv, figures."""
+
+from moorlife.io import log_to
+from moorlife.stages.truth import run
+
+
+def main(smk) -> None:
+    with log_to(smk.log[0]):
+        i = smk.input
+        run(i.truth, i.seed2, i.lifecycle, i.states, i.discrete, dict(smk.output.items()),
+            compared=smk.params.outputs, mooring_system=smk.wildcards.ms)
+
+
+if __name__ == "__main__":
+    main(snakemake)  # noqa: F821
