@@ -6,7 +6,7 @@ BIN    := $(VENV)/bin
 CORES  ?= 2
 STAMP  := $(VENV)/.moorlife-installed
 
-.PHONY: run quick test test-cluster bench report lint clean-results
+.PHONY: run quick test test-cluster bench report lint config-reference clean-results
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -27,8 +27,8 @@ quick: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --configfile config/quick.yaml
 	$(BIN)/snakemake --cores $(CORES) --report report-quick.html --configfile config/quick.yaml
 
-## test: the whole test suite (unit, peer and workflow tests)
-test: $(STAMP)
+## test: the lint, then the whole test suite (unit, peer and workflow tests)
+test: lint
 	$(BIN)/python -m pytest -q
 
 ## test-cluster: the tiny workflow by both SLURM routes (the profile; a dask-jobqueue cluster),
@@ -47,5 +47,13 @@ bench: $(STAMP)
 report: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --report report.html
 
+## lint: ruff (lint and format) on the Python, snakefmt on the Snakefile and rules, snakemake --lint
 lint: $(STAMP)
+	$(BIN)/ruff check .
+	$(BIN)/ruff format --check .
+	$(BIN)/snakefmt --check Snakefile workflow/rules
 	$(BIN)/snakemake --lint
+
+## config-reference: regenerate the key table of config/README.md from the schema
+config-reference: $(STAMP)
+	$(BIN)/python -m moorlife.io.reference config/README.md workflow/schemas/config.schema.yaml

@@ -115,11 +115,17 @@ def test_fingerprint_is_stable_and_sensitive():
     assert a != fingerprint({"a": 1, "b": [1.0, 2.0000001]}, "MS1")
 
 
-def test_readme_config_reference_is_current(schema):
+def test_config_reference_is_current(schema, tmp_path):
     from moorlife.config import schema_table
+    from moorlife.io.reference import reference_block, write_reference
 
-    readme = (ROOT / "README.md").read_text()
-    start, end = "<!-- config-reference:start -->\n", "\n<!-- config-reference:end -->"
-    assert start in readme, "README.md lacks the configuration reference"
-    block = readme[readme.index(start) + len(start): readme.index(end)]
-    assert block == schema_table(schema), "README configuration reference is stale: regenerate it"
+    text = (ROOT / "config" / "README.md").read_text()
+    assert reference_block(text, "config/README.md") == schema_table(schema), (
+        "config/README.md's configuration reference is stale: run `make config-reference`"
+    )
+    # the regeneration replaces exactly the block
+    stale = tmp_path / "README.md"
+    stale.write_text(text.replace("| `seed` |", "| `seed_old` |"))
+    assert write_reference(stale, ROOT / "workflow/schemas/config.schema.yaml") is True
+    assert stale.read_text() == text
+    assert write_reference(stale, ROOT / "workflow/schemas/config.schema.yaml") is False

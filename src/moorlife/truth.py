@@ -233,9 +233,9 @@ def hour_bins(
         If an hour falls in a class that is not one of the bins (it was not in the hindcast
         the bins were made from), or below the first edge.
     """
-    e = [selection._check_edges(v, k) for v, k in ((hs_edges, "hs_edges"), (wind_edges, "wind_edges"),
+    e = [selection.check_edges(v, k) for v, k in ((hs_edges, "hs_edges"), (wind_edges, "wind_edges"),
                                                    (tp_edges, "tp_edges"))]
-    cls = [selection._classify(np.asarray(a, dtype=float).reshape(-1), ee, name)
+    cls = [selection.classify(np.asarray(a, dtype=float).reshape(-1), ee, name)
            for a, ee, name in ((hs, e[0], "hs"), (wind_speed, e[1], "wind_speed"), (tp, e[2], "tp"))]
     shape = tuple(ee.size for ee in e)
     flat = np.ravel_multi_index(tuple(cls), shape)

@@ -40,6 +40,8 @@ from moorlife.selection.scatter import (
     DEFAULT_HS_EDGES,
     DEFAULT_TP_EDGES,
     DEFAULT_WIND_EDGES,
+    check_edges,
+    classify,
     ScatterMatrix,
     class_labels,
     modal_direction,
@@ -48,6 +50,8 @@ from moorlife.selection.scatter import (
 from moorlife.space import nearest_distance, normalise, pairwise_distance, scaling_from
 
 __all__ = [
+    "check_edges",
+    "classify",
     "VALIDATION_RULES",
     "VALIDATION_STREAM_KEY",
     "DEFAULT_HS_EDGES",

@@ -16,6 +16,8 @@ __all__ = [
     "DEFAULT_HS_EDGES",
     "DEFAULT_WIND_EDGES",
     "DEFAULT_TP_EDGES",
+    "check_edges",
+    "classify",
     "class_labels",
     "modal_direction",
     "ScatterMatrix",
@@ -28,7 +30,9 @@ DEFAULT_WIND_EDGES: tuple[float, ...] = (0.0, 7.0, 14.0)  # m/s
 DEFAULT_TP_EDGES: tuple[float, ...] = (0.0, 6.0, 9.0, 12.0)  # s
 
 
-def _check_edges(edges: npt.ArrayLike, name: str) -> np.ndarray:
+def check_edges(edges: npt.ArrayLike, name: str) -> np.ndarray:
+    """Class edges as a float array: finite lower class bounds, strictly increasing (the last
+    class is open); ``name`` is quoted in the error."""
     e = np.asarray(edges, dtype=float).reshape(-1)
     if e.size == 0:
         raise ValueError(f"{name}: at least one class edge is needed")
@@ -39,7 +43,7 @@ def _check_edges(edges: npt.ArrayLike, name: str) -> np.ndarray:
     return e
 
 
-def _classify(values: np.ndarray, edges: np.ndarray, name: str) -> np.ndarray:
+def classify(values: np.ndarray, edges: np.ndarray, name: str) -> np.ndarray:
     """Class of each value: ``k`` where ``edges[k] <= value < edges[k + 1]`` (last class open)."""
     below = values < edges[0]
     if below.any():
@@ -174,12 +178,12 @@ def scatter_matrix(
             raise ValueError(f"{name}: value {float(a[row])!r} at row {row} is not finite")
     if n == 0:
         raise ValueError("no sea states to bin")
-    e_hs = _check_edges(hs_edges, "hs_edges")
-    e_w = _check_edges(wind_edges, "wind_edges")
-    e_tp = _check_edges(tp_edges, "tp_edges")
-    c_hs = _classify(arrays["hs"], e_hs, "hs")
-    c_w = _classify(arrays["wind_speed"], e_w, "wind_speed")
-    c_tp = _classify(arrays["tp"], e_tp, "tp")
+    e_hs = check_edges(hs_edges, "hs_edges")
+    e_w = check_edges(wind_edges, "wind_edges")
+    e_tp = check_edges(tp_edges, "tp_edges")
+    c_hs = classify(arrays["hs"], e_hs, "hs")
+    c_w = classify(arrays["wind_speed"], e_w, "wind_speed")
+    c_tp = classify(arrays["tp"], e_tp, "tp")
     shape = (e_hs.size, e_w.size, e_tp.size)
     flat = np.ravel_multi_index((c_hs, c_w, c_tp), shape)
     n_bins = int(np.prod(shape))
