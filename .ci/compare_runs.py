@@ -14,9 +14,8 @@ Exits 1 listing every difference; prints what it compared.
 from __future__ import annotations
 
 import sys
-from pathlib import Path
-
 import warnings
+from pathlib import Path
 
 import numpy as np
 import zarr
@@ -89,8 +88,7 @@ def main(ref_root: str, other_root: str) -> int:
             counts["files (bytes)"] += 1
             if f.read_bytes() != t.read_bytes():
                 diffs.append(f"{f.relative_to(ref)}: bytes differ")
-    print(f"compare {other_root} against {ref_root}: "
-          + ", ".join(f"{v} {k}" for k, v in counts.items()))
+    print(f"compare {other_root} against {ref_root}: " + ", ".join(f"{v} {k}" for k, v in counts.items()))
     for d in diffs:
         print("  DIFFERENT:", d)
     if not stores:

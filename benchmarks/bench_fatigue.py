@@ -62,7 +62,9 @@ def ours_count_only(x):
 def peer_rainflow(x):
     cyc = np.array([(r, c) for r, _, c, _, _ in rainflow.extract_cycles(x)])
     s = cyc[:, 0] / AREA * 1e-6
-    return np.dot(cyc[:, 1], s**3) / 6e10 * 3600 / DURATION, np.dot(cyc[:, 1], (cyc[:, 0] / MBS) ** 3) / 316 * 3600 / DURATION
+    return np.dot(cyc[:, 1], s**3) / 6e10 * 3600 / DURATION, np.dot(
+        cyc[:, 1], (cyc[:, 0] / MBS) ** 3
+    ) / 316 * 3600 / DURATION
 
 
 def peer_fatpack(x, k):
@@ -74,8 +76,10 @@ def peer_fatpack(x, k):
 def main() -> None:
     x = tension_records(1)[0]
     batch = tension_records(24, seed=1)  # 8 cases x 3 lines
-    print(f"python {platform.python_version()}, numpy {np.__version__}, rainflow {rainflow.__version__}, "
-          f"fatpack {getattr(fatpack, '__version__', '?')}, machine {platform.machine()}")
+    print(
+        f"python {platform.python_version()}, numpy {np.__version__}, rainflow {rainflow.__version__}, "
+        f"fatpack {getattr(fatpack, '__version__', '?')}, machine {platform.machine()}"
+    )
     print(f"record: {x.size} samples ({DURATION:.0f} s at {1 / DT:.0f} Hz), MS1 studless chain\n")
 
     d_ours = ours(x)
@@ -87,8 +91,12 @@ def main() -> None:
     print(f"  moorlife           {d_ours[0]:.6e} / {d_ours[1]:.6e}")
     print(f"  rainflow package   {d_rf[0]:.6e} / {d_rf[1]:.6e}  (rel. diff {d_rf[0] / d_ours[0] - 1:+.1e})")
     print(f"  moorlife close     {d_close[0]:.6e} / {d_close[1]:.6e}  (residue closed)")
-    print(f"  fatpack k=64       {d_fp64[0]:.6e} / {d_fp64[1]:.6e}  (binned, residue closed; vs moorlife close {d_fp64[0] / d_close[0] - 1:+.1e})")
-    print(f"  fatpack k=4096     {d_fp4k[0]:.6e} / {d_fp4k[1]:.6e}  (vs moorlife close {d_fp4k[0] / d_close[0] - 1:+.1e})\n")
+    print(
+        f"  fatpack k=64       {d_fp64[0]:.6e} / {d_fp64[1]:.6e}  (binned, residue closed; vs moorlife close {d_fp64[0] / d_close[0] - 1:+.1e})"
+    )
+    print(
+        f"  fatpack k=4096     {d_fp4k[0]:.6e} / {d_fp4k[1]:.6e}  (vs moorlife close {d_fp4k[0] / d_close[0] - 1:+.1e})\n"
+    )
 
     t_ours = timeit(lambda: ours(x))
     t_count = timeit(lambda: ours_count_only(x))
@@ -97,12 +105,16 @@ def main() -> None:
     t_fp4k = timeit(lambda: peer_fatpack(x, 4096), repeat=5)
     t_batch = timeit(lambda: ours(batch), repeat=5)
     print("time per 1-h record (median):")
-    print(f"  moorlife counting + S-N + T-N damage  {t_ours * 1e3:8.3f} ms   (goal <= 5 ms: {'PASS' if t_ours <= 5e-3 else 'FAIL'})")
+    print(
+        f"  moorlife counting + S-N + T-N damage  {t_ours * 1e3:8.3f} ms   (goal <= 5 ms: {'PASS' if t_ours <= 5e-3 else 'FAIL'})"
+    )
     print(f"  moorlife counting only                {t_count * 1e3:8.3f} ms")
     print(f"  rainflow package counting + damage    {t_rf * 1e3:8.3f} ms   ratio {t_rf / t_ours:6.1f}x")
     print(f"  fatpack k=64 counting + damage        {t_fp * 1e3:8.3f} ms   ratio {t_fp / t_ours:6.1f}x")
     print(f"  fatpack k=4096 counting + damage      {t_fp4k * 1e3:8.3f} ms   ratio {t_fp4k / t_ours:6.1f}x")
-    print(f"  moorlife batch of 24 records          {t_batch * 1e3:8.3f} ms   ({t_batch / 24 * 1e3:.3f} ms per record)\n")
+    print(
+        f"  moorlife batch of 24 records          {t_batch * 1e3:8.3f} ms   ({t_batch / 24 * 1e3:.3f} ms per record)\n"
+    )
 
     # GEV most probable maximum of the same 24 records, 60-s blocks
     t_gev = timeit(lambda: gev_mpm(batch, DT, block=60.0), repeat=10)

@@ -42,26 +42,43 @@ def bench_far_field():
     Hd[..., -1], Hr[..., -1] = Hd[..., 0], Hr[..., 0]
     X = rng.normal(size=(nw, nh, 6)) + 1j * rng.normal(size=(nw, nh, 6))
     dofs = list("abcdef")
-    t_ours, ours = best(lambda: hydro.far_field_drift(omega, k, heads, theta, Hd, Hr, X,
-                                                      water_depth=200.0, rho=1025.0, g=9.80665))
+    t_ours, ours = best(
+        lambda: hydro.far_field_drift(omega, k, heads, theta, Hd, Hr, X, water_depth=200.0, rho=1025.0, g=9.80665)
+    )
 
     def peer():
         out = np.zeros((nw, nh))
         for j in range(nh):
             ds = xr.Dataset(
-                {"kochin_diffraction": (("omega", "wave_direction", "theta"), Hd[:, j:j + 1]),
-                 "kochin_radiation": (("omega", "radiating_dof", "theta"), Hr)},
-                coords={"omega": omega, "wave_direction": heads[j:j + 1], "theta": theta, "radiating_dof": dofs,
-                        "wavenumber": ("omega", k), "water_depth": 200.0, "rho": 1025.0, "g": 9.80665})
-            Xd = xr.DataArray(X[:, j:j + 1], dims=("omega", "wave_direction", "radiating_dof"),
-                              coords={"omega": omega, "wave_direction": heads[j:j + 1], "radiating_dof": dofs})
+                {
+                    "kochin_diffraction": (("omega", "wave_direction", "theta"), Hd[:, j : j + 1]),
+                    "kochin_radiation": (("omega", "radiating_dof", "theta"), Hr),
+                },
+                coords={
+                    "omega": omega,
+                    "wave_direction": heads[j : j + 1],
+                    "theta": theta,
+                    "radiating_dof": dofs,
+                    "wavenumber": ("omega", k),
+                    "water_depth": 200.0,
+                    "rho": 1025.0,
+                    "g": 9.80665,
+                },
+            )
+            Xd = xr.DataArray(
+                X[:, j : j + 1],
+                dims=("omega", "wave_direction", "radiating_dof"),
+                coords={"omega": omega, "wave_direction": heads[j : j + 1], "radiating_dof": dofs},
+            )
             out[:, j] = far_field_mean_drift_force(Xd, ds)["drift_force_surge"].values[:, 0, 0].real
         return out
 
     t_peer, ref = best(peer, n=1)
     err = np.max(np.abs(ours[..., 0] - ref)) / np.max(np.abs(ref))
-    print(f"far-field drift ({nw} freq x {nh} headings): moorlife {t_ours * 1e3:.1f} ms, "
-          f"capytaine {t_peer * 1e3:.0f} ms, ratio {t_peer / t_ours:.0f}x, max rel diff {err:.1e}")
+    print(
+        f"far-field drift ({nw} freq x {nh} headings): moorlife {t_ours * 1e3:.1f} ms, "
+        f"capytaine {t_peer * 1e3:.0f} ms, ratio {t_peer / t_ours:.0f}x, max rel diff {err:.1e}"
+    )
 
 
 def bench_newman():
@@ -83,8 +100,10 @@ def bench_newman():
 
     t_peer, ref = best(peer, n=1)
     err = np.max(np.abs(ours - ref)) / np.max(np.abs(ref))
-    print(f"Newman slow drift ({n} components x {nt} steps): moorlife {t_ours * 1e3:.0f} ms, "
-          f"double sum {t_peer * 1e3:.0f} ms, ratio {t_peer / t_ours:.0f}x, max rel diff {err:.1e}")
+    print(
+        f"Newman slow drift ({n} components x {nt} steps): moorlife {t_ours * 1e3:.0f} ms, "
+        f"double sum {t_peer * 1e3:.0f} ms, ratio {t_peer / t_ours:.0f}x, max rel diff {err:.1e}"
+    )
 
 
 if __name__ == "__main__":

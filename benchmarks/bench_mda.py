@@ -137,7 +137,9 @@ def main() -> None:
     sep_p, cov_p = quality(x, peer5)
     print(f"   bluemath-tk 5-D {t_peer5:.3f} s {cpu(peer5)}: {CPU[id(peer5)] / CPU[id(p32)]:.1f}x moorlife float32")
     print(f"   min separation of picks (larger is better): moorlife {sep_o:.4f}, bluemath-tk {sep_p:.4f}")
-    print(f"   coverage radius, hour -> nearest pick (smaller is better): moorlife {cov_o:.4f}, bluemath-tk {cov_p:.4f}")
+    print(
+        f"   coverage radius, hour -> nearest pick (smaller is better): moorlife {cov_o:.4f}, bluemath-tk {cov_p:.4f}"
+    )
     print(f"   picks in common: {np.intersect1d(p32, peer5).size}/{n}")
 
 

@@ -53,8 +53,14 @@ def nora3_like(ds: xr.Dataset) -> pd.DataFrame:
 
 
 def main() -> None:
-    cfg = {"source": "synthetic", "start": START, "end": END, "hub_height": 90.0, "shear_exponent": 0.14,
-           "site": {"name": "BiMEP", "lon": -2.894, "lat": 43.563}}
+    cfg = {
+        "source": "synthetic",
+        "start": START,
+        "end": END,
+        "hub_height": 90.0,
+        "shear_exponent": 0.14,
+        "site": {"name": "BiMEP", "lon": -2.894, "lat": 43.563},
+    }
     time_axis = hourly_time(START, END)
     n = time_axis.size
     print(f"hindcast: {n:,} hourly sea states ({START} .. {END}); target < {TARGET_S:.0f} s each")
@@ -69,21 +75,37 @@ def main() -> None:
         csv.write_text("#NORA3_wave_sub DATA. LONGITUDE:-2.894, LATITUDE:43.563\n" + nora3_like(ds).to_csv(index=False))
         nc = tmp / "era5_like.nc"
         era5 = xr.Dataset(
-            {"swh": ds["hs"], "pp1d": ds["tp"], "mwd": ds["wave_dir"],
-             "u100": -ds["wind_speed"] * np.sin(np.deg2rad(ds["wind_dir"])),
-             "v100": -ds["wind_speed"] * np.cos(np.deg2rad(ds["wind_dir"]))}
+            {
+                "swh": ds["hs"],
+                "pp1d": ds["tp"],
+                "mwd": ds["wave_dir"],
+                "u100": -ds["wind_speed"] * np.sin(np.deg2rad(ds["wind_dir"])),
+                "v100": -ds["wind_speed"] * np.cos(np.deg2rad(ds["wind_dir"])),
+            }
         ).drop_attrs()
         era5.to_netcdf(nc)
         zarr_path = tmp / "era5_like.zarr"
         era5.to_zarr(zarr_path, consolidated=False)
         kw = {"start": START, "end": END, "hub_height": 90.0, "shear_exponent": 0.14}
         rows = [
-            ("CSV (NORA3 layout, 28 columns)", lambda: read_hindcast(csv, **kw),
-             lambda: pd.read_csv(csv, comment="#"), csv.stat().st_size),
-            ("NetCDF (ERA5 names, u100/v100)", lambda: read_hindcast(nc, **kw),
-             lambda: xr.open_dataset(nc).load(), nc.stat().st_size),
-            ("Zarr (ERA5 names, u100/v100)", lambda: read_hindcast(zarr_path, **kw),
-             lambda: xr.open_zarr(zarr_path, consolidated=False).load(), 0),
+            (
+                "CSV (NORA3 layout, 28 columns)",
+                lambda: read_hindcast(csv, **kw),
+                lambda: pd.read_csv(csv, comment="#"),
+                csv.stat().st_size,
+            ),
+            (
+                "NetCDF (ERA5 names, u100/v100)",
+                lambda: read_hindcast(nc, **kw),
+                lambda: xr.open_dataset(nc).load(),
+                nc.stat().st_size,
+            ),
+            (
+                "Zarr (ERA5 names, u100/v100)",
+                lambda: read_hindcast(zarr_path, **kw),
+                lambda: xr.open_zarr(zarr_path, consolidated=False).load(),
+                0,
+            ),
         ]
         print(f"{'loader':34s} {'moorlife':>9s} {'raw read':>9s} {'ratio':>6s}")
         for name, ours, floor, size in rows:

@@ -177,10 +177,13 @@ def profile_kernels(props, layout, repeat: int) -> None:
     n = 100000
     print(f"\nKernels of one BDF2 step of one {N}-segment line (us per call, best of {repeat}):")
     base = (r, v, p, buf, N)
-    for name, f, args in [("node forces + matrix pieces", forces, (*base, True)),
-                          ("node forces only", forces, (*base, False)),
-                          ("block factorisation", factor, base), ("block solve", solve, base),
-                          ("whole BDF2 step (+4 state copies)", step, (*base, rp, vp))]:
+    for name, f, args in [
+        ("node forces + matrix pieces", forces, (*base, True)),
+        ("node forces only", forces, (*base, False)),
+        ("block factorisation", factor, base),
+        ("block solve", solve, base),
+        ("whole BDF2 step (+4 state copies)", step, (*base, rp, vp)),
+    ]:
         f(10, *args)
         best = np.inf
         for _ in range(repeat):
@@ -214,9 +217,11 @@ def main() -> None:
     layout = lines.oc4_layout(None)
     settings = lines.mooring_settings(None)
     per_hour = 3600.0 / args.duration
-    print(f"{args.ms}: {settings.n_segments} segments x 3 lines, {args.duration:.0f} s of prescribed surge "
-          f"(5 m @ 100 s + 1 m @ 10 s), friction {settings.friction_coefficient}; CPU s per simulated hour "
-          f"(best of {args.repeat})\n")
+    print(
+        f"{args.ms}: {settings.n_segments} segments x 3 lines, {args.duration:.0f} s of prescribed surge "
+        f"(5 m @ 100 s + 1 m @ 10 s), friction {settings.friction_coefficient}; CPU s per simulated hour "
+        f"(best of {args.repeat})\n"
+    )
 
     results: dict[str, tuple[float, np.ndarray]] = {}
     with tempfile.TemporaryDirectory() as tmp:
@@ -256,8 +261,10 @@ def main() -> None:
     print(f"  {'model':<34s} {'CPU s/h':>8s} {'vs MoorDyn 1 ms':>16s} {'vs MoorDyn 5 ms':>16s}")
     for name, (cost, _) in results.items():
         print(f"  {name:<34s} {cost:8.3f} {md / cost:15.1f}x {md_fast / cost:15.1f}x")
-    print(f"\n  initialisation (static Newton + relaxation, per sea state): "
-          f"{inits['moorlife bdf2 h=0.05 (dt 0.1)']:.3f} CPU s")
+    print(
+        f"\n  initialisation (static Newton + relaxation, per sea state): "
+        f"{inits['moorlife bdf2 h=0.05 (dt 0.1)']:.3f} CPU s"
+    )
     print("\nAccuracy vs MoorDyn dtM=0.001, t >= 100 s (fairlead tension, force at the coupled point):")
     t05 = np.arange(0.0, args.duration + 1e-9, 0.05)
     keep = t05 >= 100.0

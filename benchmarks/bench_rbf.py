@@ -116,19 +116,32 @@ def main() -> None:
     # 1. ours at paper scale
     st = RBFSettings.from_config({})
     grid = rbf.shape_grid(st.grid_min, st.grid_max, st.grid_n)
-    print(f"settings: q0 grid {st.grid_min}-{st.grid_max} x {st.grid_n}, smoothing {st.smoothing}, "
-          f"share_tol {st.share_tol}")
+    print(
+        f"settings: q0 grid {st.grid_min}-{st.grid_max} x {st.grid_n}, smoothing {st.smoothing}, "
+        f"share_tol {st.share_tol}"
+    )
     model, t_fit, c_fit = timed(
-        rbf.fit_rbf, pts[train], y, is_direction=MASK, shapes=grid, log_output=is_dmg, share_tol=st.share_tol,
-        smoothing=st.smoothing, lo=lo, span=span
+        rbf.fit_rbf,
+        pts[train],
+        y,
+        is_direction=MASK,
+        shapes=grid,
+        log_output=is_dmg,
+        share_tol=st.share_tol,
+        smoothing=st.smoothing,
+        lo=lo,
+        span=span,
     )
     pred, t_pred, c_pred = timed(rbf.predict_rbf, model, pts)
-    print(f"\n[ours, Rippa] fit {t_fit:.2f} s (cpu {c_fit:.2f}), predict {n} x {len(labels)} "
-          f"{t_pred:.2f} s (cpu {c_pred:.2f}), total {t_fit + t_pred:.2f} s; "
-          f"{np.unique(model.shape).size} distinct shapes: {np.round(np.unique(model.shape), 4)}")
+    print(
+        f"\n[ours, Rippa] fit {t_fit:.2f} s (cpu {c_fit:.2f}), predict {n} x {len(labels)} "
+        f"{t_pred:.2f} s (cpu {c_pred:.2f}), total {t_fit + t_pred:.2f} s; "
+        f"{np.unique(model.shape).size} distinct shapes: {np.round(np.unique(model.shape), 4)}"
+    )
     q_fixed = np.where(is_dmg, 0.1, 0.175)
-    model_f, t_fit_f, _ = timed(rbf.fit_rbf, pts[train], y, is_direction=MASK, shape=q_fixed, log_output=is_dmg,
-                                lo=lo, span=span)
+    model_f, t_fit_f, _ = timed(
+        rbf.fit_rbf, pts[train], y, is_direction=MASK, shape=q_fixed, log_output=is_dmg, lo=lo, span=span
+    )
     _, t_pred_f, _ = timed(rbf.predict_rbf, model_f, pts)
     print(f"[ours, fixed 0.1/0.175] fit {t_fit_f:.2f} s, predict {t_pred_f:.2f} s, total {t_fit_f + t_pred_f:.2f} s")
 
@@ -141,10 +154,16 @@ def main() -> None:
     sp_pred, t_spred, _ = timed(sp, z_all)
     one, t_ofit, _ = timed(rbf.fit_rbf, pts[train], y, is_direction=MASK, shape=0.175, lo=lo, span=span)
     our_pred, t_opred, _ = timed(rbf.predict_rbf, one, pts)
-    print(f"\n[scipy RBFInterpolator, 1 shape] fit {t_sfit:.2f} s, predict {t_spred:.2f} s, total {t_sfit + t_spred:.2f} s")
-    print(f"[ours, same single shape]        fit {t_ofit:.2f} s, predict {t_opred:.2f} s, total {t_ofit + t_opred:.2f} s")
-    print(f"ratio scipy / ours: {(t_sfit + t_spred) / (t_ofit + t_opred):.1f}x "
-          f"(scipy's metric does not fold directions; the numbers differ only there)")
+    print(
+        f"\n[scipy RBFInterpolator, 1 shape] fit {t_sfit:.2f} s, predict {t_spred:.2f} s, total {t_sfit + t_spred:.2f} s"
+    )
+    print(
+        f"[ours, same single shape]        fit {t_ofit:.2f} s, predict {t_opred:.2f} s, total {t_ofit + t_opred:.2f} s"
+    )
+    print(
+        f"ratio scipy / ours: {(t_sfit + t_spred) / (t_ofit + t_opred):.1f}x "
+        f"(scipy's metric does not fold directions; the numbers differ only there)"
+    )
 
     # 3. bluemath-tk
     if not args.skip_bluemath:
@@ -158,19 +177,43 @@ def main() -> None:
         tgt = pd.DataFrame(y[:, :k], columns=labels[:k])
         bm = RBF(kernel="gaussian", sigma_min=0.001, sigma_max=0.5)
         bm.row_chunks = 4096
-        _, t_bfit, _ = timed(bm.fit, subset_data=sub, target_data=tgt,
-                             subset_directional_variables=["wind_dir", "wave_dir"], num_workers=1)
+        _, t_bfit, _ = timed(
+            bm.fit,
+            subset_data=sub,
+            target_data=tgt,
+            subset_directional_variables=["wind_dir", "wave_dir"],
+            num_workers=1,
+        )
         _, t_bpred, _ = timed(bm.predict, pd.DataFrame(pts, columns=cols), num_workers=1)
         scale = len(labels) / k
-        print(f"\n[bluemath-tk RBF, {k} output(s)] fit {t_bfit:.2f} s, predict {t_bpred:.2f} s; "
-              f"scaled to {len(labels)} outputs: {(t_bfit + t_bpred) * scale:.1f} s")
+        print(
+            f"\n[bluemath-tk RBF, {k} output(s)] fit {t_bfit:.2f} s, predict {t_bpred:.2f} s; "
+            f"scaled to {len(labels)} outputs: {(t_bfit + t_bpred) * scale:.1f} s"
+        )
         print(f"ratio bluemath-tk / ours (Rippa, all outputs): {(t_bfit + t_bpred) * scale / (t_fit + t_pred):.1f}x")
 
     # 4. validation quality: log10 vs linear damage, Rippa vs fixed
-    lin = rbf.fit_rbf(pts[train], y, is_direction=MASK, shapes=grid, log_output=False, share_tol=st.share_tol,
-                      smoothing=st.smoothing, lo=lo, span=span)
-    exact = rbf.fit_rbf(pts[train], y, is_direction=MASK, shapes=rbf.shape_grid(0.02, 1.0, 18), log_output=is_dmg,
-                        share_tol=0.02, lo=lo, span=span)
+    lin = rbf.fit_rbf(
+        pts[train],
+        y,
+        is_direction=MASK,
+        shapes=grid,
+        log_output=False,
+        share_tol=st.share_tol,
+        smoothing=st.smoothing,
+        lo=lo,
+        span=span,
+    )
+    exact = rbf.fit_rbf(
+        pts[train],
+        y,
+        is_direction=MASK,
+        shapes=rbf.shape_grid(0.02, 1.0, 18),
+        log_output=is_dmg,
+        share_tol=0.02,
+        lo=lo,
+        span=span,
+    )
     variants = {"rippa+log": model, "rippa+linear": lin, "fixed+log": model_f, "previous (exact)": exact}
     print("\nvalidation on 225 states: r (RMSE) per output")
     res = {k: metrics(rbf.predict_rbf(m, pts[valid]), y_val) for k, m in variants.items()}

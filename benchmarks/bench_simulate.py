@@ -37,7 +37,7 @@ def synthetic_platform(platform_cfg: dict) -> sim.ModelInputs:
     """OC4-sized stand-in: diagonal mass/stiffness, 6x4 radiation states, smooth excitation."""
     om = np.linspace(0.05, 2.5, 100)
     hd = np.deg2rad(np.arange(-180.0, 180.0, 10.0))
-    amp = 2.0e6 * np.exp(-((om - 0.6) / 0.5) ** 2)
+    amp = 2.0e6 * np.exp(-(((om - 0.6) / 0.5) ** 2))
     exc = np.zeros((om.size, hd.size, 6), dtype=complex)
     exc[:, :, 0] = amp[:, None] * np.cos(hd)
     exc[:, :, 1] = amp[:, None] * np.sin(hd)
@@ -55,10 +55,21 @@ def synthetic_platform(platform_cfg: dict) -> sim.ModelInputs:
     strips = sim._strips_from_members(platform_cfg["members"], 4.0, 1025.0)
     v = np.arange(-40.0, 80.0, 0.02)
     return sim.build_model(
-        mass=np.diag([2.0e7, 2.0e7, 2.8e7, 1.4e10, 1.4e10, 1.8e10]), stiffness=np.diag([0, 0, 3.8e6, 1e9, 1e9, 0.0]),
-        rad_a=ra, rad_b=rb, rad_c=rc, omega=om, headings=hd, excitation=exc, drift=drift,
-        strip_pos=strips[0], strip_axis=strips[1], strip_cdn=strips[2], strip_cda=strips[3],
-        hub=np.array([0.0, 0.0, 90.0]), thrust_speed=v,
+        mass=np.diag([2.0e7, 2.0e7, 2.8e7, 1.4e10, 1.4e10, 1.8e10]),
+        stiffness=np.diag([0, 0, 3.8e6, 1e9, 1e9, 0.0]),
+        rad_a=ra,
+        rad_b=rb,
+        rad_c=rc,
+        omega=om,
+        headings=hd,
+        excitation=exc,
+        drift=drift,
+        strip_pos=strips[0],
+        strip_axis=strips[1],
+        strip_cdn=strips[2],
+        strip_cda=strips[3],
+        hub=np.array([0.0, 0.0, 90.0]),
+        thrust_speed=v,
         thrust_force=0.5 * 1.225 * math.pi * 63**2 * 0.8 * v * np.abs(v) * (np.abs(v) < 25),
     )
 
@@ -70,7 +81,9 @@ def platform_model(platform_cfg: dict, row: dict, kind: str, wamit: str | None =
         from moorlife.io.wamit import read_wamit_dataset
 
         pm = hydro.load_platform_model(read_wamit_dataset(wamit), platform_cfg)
-        return sim.attach_mooring(sim.platform_from(pm, platform_cfg, {}), row, {"model": kind}), f"WAMIT {Path(wamit).name}"
+        return sim.attach_mooring(
+            sim.platform_from(pm, platform_cfg, {}), row, {"model": kind}
+        ), f"WAMIT {Path(wamit).name}"
     try:
         from moorlife.io.platform import open_platform_nc
 
@@ -84,8 +97,13 @@ def platform_model(platform_cfg: dict, row: dict, kind: str, wamit: str | None =
 
 def time_ours(model: sim.ModelInputs, batch: int, record: float, repeat: int = 1) -> float:
     """CPU s per simulated hour per sea state, the best of ``repeat`` timings."""
-    cases = {"wind_speed": np.linspace(10.0, 14.0, batch), "wind_dir": np.full(batch, 328.09),
-             "hs": np.linspace(3.0, 3.7, batch), "tp": np.full(batch, 9.21), "wave_dir": np.full(batch, 316.09)}
+    cases = {
+        "wind_speed": np.linspace(10.0, 14.0, batch),
+        "wind_dir": np.full(batch, 328.09),
+        "hs": np.linspace(3.0, 3.7, batch),
+        "tp": np.full(batch, 9.21),
+        "wave_dir": np.full(batch, 316.09),
+    }
     cfg = {"duration": record, "transient": 0.0, "dt": 0.1}
     kw = dict(mooring_system="MS2", seed=1, model_inputs=model, fatigue_cfg={}, stats_cfg={"block": 20.0})
     warm = {k: v[:1] for k, v in cases.items()}
@@ -138,8 +156,9 @@ def time_moordyn(row: dict, seconds: float, dt: float = 0.1) -> float:
     """MoorDyn CPU s per simulated hour for the three lines under prescribed fairlead motion."""
     import moordyn
 
-    deck = MOORDYN_DECK.format(name=row["mooring_system"], d=row["equivalent_diameter_m"], m=row["mass_kg_per_m"],
-                               ea=row["EA_N"])
+    deck = MOORDYN_DECK.format(
+        name=row["mooring_system"], d=row["equivalent_diameter_m"], m=row["mass_kg_per_m"], ea=row["EA_N"]
+    )
     fair = np.array([[20.434, 35.393, -14.0], [-40.868, 0.0, -14.0], [20.434, -35.393, -14.0]])
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "lines.dat")
@@ -158,8 +177,9 @@ def time_moordyn(row: dict, seconds: float, dt: float = 0.1) -> float:
             for k in range(n):
                 t = k * dt
                 sx = 5.0 * math.sin(2 * math.pi * t / 100.0) + 1.0 * math.sin(2 * math.pi * t / 10.0)
-                vx = 5.0 * 2 * math.pi / 100.0 * math.cos(2 * math.pi * t / 100.0) + 1.0 * 2 * math.pi / 10.0 * math.cos(
-                    2 * math.pi * t / 10.0)
+                vx = 5.0 * 2 * math.pi / 100.0 * math.cos(
+                    2 * math.pi * t / 100.0
+                ) + 1.0 * 2 * math.pi / 10.0 * math.cos(2 * math.pi * t / 10.0)
                 x = (fair + np.array([sx, 0.0, 0.0])).ravel().tolist()
                 moordyn.Step(system, x, [vx, 0.0, 0.0] * 3, t, dt)
             cpu = time.process_time() - t0
@@ -184,8 +204,10 @@ def main() -> None:
     table = read_mooring_systems(ROOT / "config/mooring_systems.tsv")
     row = {k: (v.item() if hasattr(v, "item") else v) for k, v in table.loc["MS2"].items()}
     row["mooring_system"] = "MS2"
-    print(f"record {args.record:.0f} s per timing, best of {args.repeat}, dt 0.1 s, MS2 lines, "
-          "CPU s per simulated hour per sea state")
+    print(
+        f"record {args.record:.0f} s per timing, best of {args.repeat}, dt 0.1 s, MS2 lines, "
+        "CPU s per simulated hour per sea state"
+    )
     ours = {}
     for kind in ("quasistatic", "dynamic"):
         model, source = platform_model(platform_cfg, row, kind, args.wamit)

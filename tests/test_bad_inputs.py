@@ -20,13 +20,12 @@ import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
+from test_hindcast_io import NORA3_HEADER, nora3_frame, write_csv
 
 from moorlife import io as mio
 from moorlife.config import ConfigError, check_against_table, deep_merge, validate_config
 from moorlife.io import read_mooring_systems, read_study_config, read_yaml
 from moorlife.metocean import HindcastError
-
-from test_hindcast_io import NORA3_HEADER, nora3_frame, write_csv
 
 ROOT = Path(__file__).resolve().parents[1]
 SCRIPTS = ROOT / "workflow" / "scripts"
@@ -41,14 +40,23 @@ def adapter(name: str):
 
 def hindcast_params(path: Path) -> dict:
     cfg = read_study_config(ROOT / "config/config.yaml", schema=ROOT / "workflow/schemas/config.schema.yaml")
-    return {**cfg["hindcast"], "source": "file", "path": str(path),
-            "start": "2000-01-01T00:00", "end": "2000-01-02T23:00"}
+    return {
+        **cfg["hindcast"],
+        "source": "file",
+        "path": str(path),
+        "start": "2000-01-01T00:00",
+        "end": "2000-01-02T23:00",
+    }
 
 
 def run_metocean(tmp_path: Path, csv: Path):
     out = tmp_path / "results" / "metocean" / "hindcast.zarr"
-    smk = SimpleNamespace(params=SimpleNamespace(hindcast=hindcast_params(csv), seed=1),
-                          output=[str(out)], log=[str(tmp_path / "logs" / "metocean.log")], input=[])
+    smk = SimpleNamespace(
+        params=SimpleNamespace(hindcast=hindcast_params(csv), seed=1),
+        output=[str(out)],
+        log=[str(tmp_path / "logs" / "metocean.log")],
+        input=[],
+    )
     return out, smk
 
 
@@ -57,6 +65,7 @@ def _set(col, value, row=7):
         df[col] = df[col].astype(object)
         df.loc[row, col] = value
         return df
+
     return edit
 
 
@@ -67,9 +76,20 @@ BAD = {
     "negative_tp": (_set("tp", -4.0), r"'tp'.*value -4 is not > 0"),
     "direction_out_of_range": (_set("Pdir", 400.0), r"'Pdir'.*direction 400 is outside \[0, 360\)"),
     "duplicated_time": (lambda df: pd.concat([df.iloc[:5], df.iloc[4:]]).reset_index(drop=True), r"duplicat"),
-    "unsorted_time": (lambda df: df.iloc[[0, 1, 3, 2] + list(range(4, len(df)))].reset_index(drop=True), r"(unsorted|not increasing|order)"),
-    "non_hourly": (lambda df: df.assign(time=pd.date_range("2000-01-01", periods=len(df), freq="30min").strftime("%Y-%m-%d %H:%M:%S")), r"(non-hourly|hourly|step)"),
-    "missing_column": (lambda df: df.drop(columns=["tp"]), r"(tp|peak period).*(missing|not found|no column)|(missing|no column).*(tp|peak period)"),
+    "unsorted_time": (
+        lambda df: df.iloc[[0, 1, 3, 2] + list(range(4, len(df)))].reset_index(drop=True),
+        r"(unsorted|not increasing|order)",
+    ),
+    "non_hourly": (
+        lambda df: df.assign(
+            time=pd.date_range("2000-01-01", periods=len(df), freq="30min").strftime("%Y-%m-%d %H:%M:%S")
+        ),
+        r"(non-hourly|hourly|step)",
+    ),
+    "missing_column": (
+        lambda df: df.drop(columns=["tp"]),
+        r"(tp|peak period).*(missing|not found|no column)|(missing|no column).*(tp|peak period)",
+    ),
     "hs_in_cm": (lambda df: df.assign(hs=df["hs"] * 100.0), r"'hs'.*(cm|unit|implausible|absurd)"),
 }
 
@@ -113,16 +133,22 @@ def test_corrupted_upstream_store_not_trusted(tmp_path, damage):
     """A hindcast store left in results/ by a killed or foreign writer stops the next rule."""
     store = tmp_path / "results" / "metocean" / "hindcast.zarr"
     t = pd.date_range("1985-01-01", periods=200, freq="h")
-    ds = xr.Dataset({v: ("time", np.linspace(1, 2, 200)) for v in ("hs", "tp", "wind_speed", "wind_dir", "wave_dir")},
-                    coords={"time": t})
+    ds = xr.Dataset(
+        {v: ("time", np.linspace(1, 2, 200)) for v in ("hs", "tp", "wind_speed", "wind_dir", "wave_dir")},
+        coords={"time": t},
+    )
     if damage == "not_flagged":
         ds.to_zarr(store, mode="w", consolidated=False)
     else:
         mio.write_zarr(ds, store)
         shutil.rmtree(store / "tp")
     out = tmp_path / "results" / "selection" / "cases.zarr"
-    smk = SimpleNamespace(input=[str(store)], output=[str(out)], log=[str(tmp_path / "sel.log")],
-                          params=SimpleNamespace(n_train=10, n_validate=3, rule="random", seed=1))
+    smk = SimpleNamespace(
+        input=[str(store)],
+        output=[str(out)],
+        log=[str(tmp_path / "sel.log")],
+        params=SimpleNamespace(n_train=10, n_validate=3, rule="random", seed=1),
+    )
     with pytest.raises((mio.IncompleteStoreError, KeyError, ValueError)) as err:
         adapter("selection")(smk)
     assert "hindcast.zarr" in str(err.value) or "tp" in str(err.value), str(err.value)
@@ -138,10 +164,16 @@ def test_snakemake_reports_bad_hindcast_and_writes_nothing(tmp_path):
     (tmp_path / "bad.yaml").write_text(
         f"hindcast:\n  source: file\n  path: {csv}\n  start: '2000-01-01T00:00'\n  end: '2000-01-02T23:00'\n"
         # 48 hours hold at most 48 states (checked at parse time since issue 20)
-        "selection:\n  n_train: 10\n  n_validate: 4\n")
+        "selection:\n  n_train: 10\n  n_validate: 4\n"
+    )
     snakemake = str(Path(sys.executable).parent / "snakemake")
-    res = subprocess.run([snakemake, "--cores", "1", "results/metocean/hindcast.zarr", "--configfile",
-                          "config/quick.yaml", "bad.yaml"], cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    res = subprocess.run(
+        [snakemake, "--cores", "1", "results/metocean/hindcast.zarr", "--configfile", "config/quick.yaml", "bad.yaml"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert res.returncode != 0
     log = (tmp_path / "logs" / "metocean" / "hindcast.log").read_text()
     for text in (res.stderr + res.stdout, log):
@@ -173,15 +205,18 @@ def _rows(col, values):
         for row, v in values.items():
             df.loc[row, col] = v
         return df
+
     return edit
 
 
 def _times(fmt_row):
     """Replace the time column: fmt_row(k, timestamp) -> text."""
+
     def edit(df):
         t = pd.date_range("2000-01-01", periods=len(df), freq="h")
         df["time"] = [fmt_row(k, x) for k, x in enumerate(t)]
         return df
+
     return edit
 
 
@@ -193,28 +228,44 @@ def _dup_hs(df):
 BAD_ISSUE20 = {
     # item 4: physically impossible sea states
     "tp_0.01": (_set("tp", 0.01), r"row 11 .*tp = 0\.01 s .*below the floor of 1 s"),
-    "hs20_tp3": (lambda df: _set("tp", 3.0)(_set("hs", 20.0)(df)), r"row 11 .*hs = 20 m, tp = 3 s .*steepness .* = 1\.42 exceeds the breaking limit"),
+    "hs20_tp3": (
+        lambda df: _set("tp", 3.0)(_set("hs", 20.0)(df)),
+        r"row 11 .*hs = 20 m, tp = 3 s .*steepness .* = 1\.42 exceeds the breaking limit",
+    ),
     "hs5_tp4": (lambda df: _set("tp", 4.0)(_set("hs", 5.0)(df)), r"hs = 5 m, tp = 4 s .*breaking limit 0\.1429"),
     "tp_0.5_small_hs": (lambda df: _set("tp", 0.5)(_set("hs", 0.01)(df)), r"tp = 0\.5 s .*floor"),
     # item 6: a constant input coordinate (all-zero wind)
-    "all_zero_wind": (lambda df: df.assign(wind_speed_10m=0.0, wind_speed_100m=0.0, wind_speed_250m=0.0),
-                      r"column 'wind_speed_100m' \(variable wind_speed\) is constant, 0,"),
+    "all_zero_wind": (
+        lambda df: df.assign(wind_speed_10m=0.0, wind_speed_100m=0.0, wind_speed_250m=0.0),
+        r"column 'wind_speed_100m' \(variable wind_speed\) is constant, 0,",
+    ),
     "constant_tp": (lambda df: df.assign(tp=7.0), r"column 'tp' \(variable tp\) is constant, 7,"),
     # item 7: raw exceptions
-    "mixed_tz": (_times(lambda k, x: x.strftime("%Y-%m-%d %H:%M:%S") + ("+01:00" if k % 2 else "")),
-                 r"column 'time' mixes timestamps with a UTC offset \(row \d+: '2000-01-01 01:00:00\+01:00'\)"),
+    "mixed_tz": (
+        _times(lambda k, x: x.strftime("%Y-%m-%d %H:%M:%S") + ("+01:00" if k % 2 else "")),
+        r"column 'time' mixes timestamps with a UTC offset \(row \d+: '2000-01-01 01:00:00\+01:00'\)",
+    ),
     "ragged_row": (lambda df: df, r"line 10 has 13 comma-separated fields, the header row 12 \(a ragged row"),
     "duplicated_columns": (_dup_hs, r"duplicated column name\(s\) \['hs'\]"),
     "not_a_time": (_set("time", "yesterday", row=5), r"column 'time', row 9: 'yesterday' is not a timestamp"),
     "text_value": (_set("hs", "abc"), r"column 'hs', row 11 .*'abc' is not a number"),
     # item 8: infinite values (a wrapped inf direction became NaN in a complete store)
     "inf_direction": (_set("Pdir", np.inf), r"column 'Pdir' \(variable wave_dir\), row 11: value inf is not finite"),
-    "minus_inf_wind": (_set("wind_direction_100m", -np.inf), r"column 'wind_direction_100m' .*row 11: value -inf is not finite"),
+    "minus_inf_wind": (
+        _set("wind_direction_100m", -np.inf),
+        r"column 'wind_direction_100m' .*row 11: value -inf is not finite",
+    ),
     "inf_hs": (_set("hs", np.inf), r"column 'hs' .*row 11: value inf is not finite"),
     # the validation's other classes, through the same adapter
     "negative_wind": (_set("wind_speed_100m", -3.0), r"'wind_speed_100m'.*value -3 is negative"),
-    "wind_in_kmh": (lambda df: df.assign(wind_speed_100m=df["wind_speed_100m"] * 10.0), r"'wind_speed_100m'.*exceeds the plausible maximum 80 \(wind speed in km/h"),
-    "negative_direction": (_set("wind_direction_100m", -10.0), r"'wind_direction_100m'.*direction -10 is outside \[0, 360\)"),
+    "wind_in_kmh": (
+        lambda df: df.assign(wind_speed_100m=df["wind_speed_100m"] * 10.0),
+        r"'wind_speed_100m'.*exceeds the plausible maximum 80 \(wind speed in km/h",
+    ),
+    "negative_direction": (
+        _set("wind_direction_100m", -10.0),
+        r"'wind_direction_100m'.*direction -10 is outside \[0, 360\)",
+    ),
     "tp_in_tenths": (lambda df: df.assign(tp=df["tp"] * 10.0), r"'tp'.*exceeds the plausible maximum 40"),
 }
 
@@ -247,7 +298,11 @@ def test_issue20_bad_hindcast_rejected(tmp_path, case):
     [
         ("binary", b"\x89HDF\r\n\x1a\n\x00\x00\xff\xfe\x00\x01" * 20, r"not a CSV text file"),
         # item 11: a wrong path to a file with secrets: its content is never echoed
-        ("secret", b"root:*:19000:0:99999:7:::\ndaemon:*:19000:0:99999:7:::\n", r"missing column 'time': expected a header row"),
+        (
+            "secret",
+            b"root:*:19000:0:99999:7:::\ndaemon:*:19000:0:99999:7:::\n",
+            r"missing column 'time': expected a header row",
+        ),
         ("text", b"just some notes\nnothing tabular, here\n", r"missing column 'time'"),
     ],
 )
@@ -270,7 +325,10 @@ def test_issue20_not_a_hindcast(tmp_path, case, content, pattern):
         ({"start": "yesterday"}, r"config key 'hindcast\.start' = 'yesterday' is not an ISO 8601 time"),
         ({"end": "2000-13-45"}, r"config key 'hindcast\.end' = '2000-13-45' is not an ISO 8601 time"),
         ({"start": "1999-01-01T00:00"}, r"study period 1999-01-01 00:00:00 .* not inside the file's span"),
-        ({"cleaning": {"wrap_directions": True}, "_inf": True}, r"'Pdir' \(variable wave_dir\), row 11: value inf is not finite"),
+        (
+            {"cleaning": {"wrap_directions": True}, "_inf": True},
+            r"'Pdir' \(variable wave_dir\), row 11: value inf is not finite",
+        ),
     ],
     ids=["start_yesterday", "end_not_a_date", "period_outside_file", "inf_with_wrap_directions"],
 )
@@ -303,30 +361,87 @@ QUICK = read_yaml(ROOT / "config" / "quick.yaml")
 
 BAD_CONFIG = {
     # item 5: a time step that cannot resolve the waves
-    "dt_1": ({"simulation": {"dt": 1.0}}, r"'simulation\.dt' = 1\.0 s cannot resolve the shortest wave period, 2 pi / 'hydro\.omega\.max' = 2 pi / 2\.5 = 2\.51 s"),
+    "dt_1": (
+        {"simulation": {"dt": 1.0}},
+        r"'simulation\.dt' = 1\.0 s cannot resolve the shortest wave period, 2 pi / 'hydro\.omega\.max' = 2 pi / 2\.5 = 2\.51 s",
+    ),
     "dt_0.3": ({"simulation": {"dt": 0.3}}, r"'simulation\.dt' = 0\.3 s .*dt <= 0\.251 s"),
-    "dt_vs_omega_max": ({"hydro": {"omega": {"max": 6.0}}, "simulation": {"dt": 0.2}}, r"'simulation\.dt' = 0\.2 s .*'hydro\.omega\.max' = 2 pi / 6\.0"),
-    "kinematics_dt_1": ({"simulation": {"kinematics_dt": 1.0}}, r"'simulation\.kinematics_dt' = 1\.0 s \(sampled every 1 s"),
+    "dt_vs_omega_max": (
+        {"hydro": {"omega": {"max": 6.0}}, "simulation": {"dt": 0.2}},
+        r"'simulation\.dt' = 0\.2 s .*'hydro\.omega\.max' = 2 pi / 6\.0",
+    ),
+    "kinematics_dt_1": (
+        {"simulation": {"kinematics_dt": 1.0}},
+        r"'simulation\.kinematics_dt' = 1\.0 s \(sampled every 1 s",
+    ),
     # item 6: cross-key checks that ran on the workers
-    "block_100_in_120s": ({"simulation": {"duration": 120.0}, "statistics": {"block": 100.0}}, r"'statistics\.block' = 100\.0 s: the kept record 'simulation\.duration' = 120\.0 s holds 1 block\(s\); the GEV fit needs at least 5: statistics\.block <= 24 s"),
-    "block_200_in_600s": ({"statistics": {"block": 200.0}}, r"'statistics\.block' = 200\.0 s: the kept record 'simulation\.duration' = 600\.0 s holds 3 block\(s\)"),
-    "block_one_step": ({"statistics": {"block": 0.1}}, r"'statistics\.block' = 0\.1 s is shorter than two steps of 'simulation\.dt' = 0\.1 s"),
-    "too_many_states": ({"hindcast": {"end": "1985-01-02T00:00"}}, r"'selection\.n_train' = 40 \+ 'selection\.n_validate' = 12 sea states exceed the 25 hour"),
-    "omega_min_above_max": ({"hydro": {"omega": {"min": 3.0}}}, r"'hydro\.omega\.min' = 3\.0 must be below 'hydro\.omega\.max' = 2\.5"),
-    "rbf_grid_reversed": ({"lifecycle": {"rbf": {"grid": {"min": 2.0}}}}, r"'lifecycle\.rbf\.grid\.min' = 2\.0 must be below 'lifecycle\.rbf\.grid\.max' = 1\.0"),
-    "synthetic_tp_clip_reversed": ({"hindcast": {"synthetic": {"tp_min": 30.0}}}, r"'hindcast\.synthetic\.tp_min' = 30\.0 must be below 'hindcast\.synthetic\.tp_max' = 22\.0"),
-    "hs_edges_not_increasing": ({"selection": {"discrete": {"hs_edges": [0.0, 3.0, 1.5]}}}, r"'selection\.discrete\.hs_edges' = \[0\.0, 3\.0, 1\.5\]: the class edges must increase"),
+    "block_100_in_120s": (
+        {"simulation": {"duration": 120.0}, "statistics": {"block": 100.0}},
+        r"'statistics\.block' = 100\.0 s: the kept record 'simulation\.duration' = 120\.0 s holds 1 block\(s\); the GEV fit needs at least 5: statistics\.block <= 24 s",
+    ),
+    "block_200_in_600s": (
+        {"statistics": {"block": 200.0}},
+        r"'statistics\.block' = 200\.0 s: the kept record 'simulation\.duration' = 600\.0 s holds 3 block\(s\)",
+    ),
+    "block_one_step": (
+        {"statistics": {"block": 0.1}},
+        r"'statistics\.block' = 0\.1 s is shorter than two steps of 'simulation\.dt' = 0\.1 s",
+    ),
+    "too_many_states": (
+        {"hindcast": {"end": "1985-01-02T00:00"}},
+        r"'selection\.n_train' = 40 \+ 'selection\.n_validate' = 12 sea states exceed the 25 hour",
+    ),
+    "omega_min_above_max": (
+        {"hydro": {"omega": {"min": 3.0}}},
+        r"'hydro\.omega\.min' = 3\.0 must be below 'hydro\.omega\.max' = 2\.5",
+    ),
+    "rbf_grid_reversed": (
+        {"lifecycle": {"rbf": {"grid": {"min": 2.0}}}},
+        r"'lifecycle\.rbf\.grid\.min' = 2\.0 must be below 'lifecycle\.rbf\.grid\.max' = 1\.0",
+    ),
+    "synthetic_tp_clip_reversed": (
+        {"hindcast": {"synthetic": {"tp_min": 30.0}}},
+        r"'hindcast\.synthetic\.tp_min' = 30\.0 must be below 'hindcast\.synthetic\.tp_max' = 22\.0",
+    ),
+    "hs_edges_not_increasing": (
+        {"selection": {"discrete": {"hs_edges": [0.0, 3.0, 1.5]}}},
+        r"'selection\.discrete\.hs_edges' = \[0\.0, 3\.0, 1\.5\]: the class edges must increase",
+    ),
     "heading_step_7": ({"hydro": {"heading_step": 7.0}}, r"'hydro\.heading_step' = 7\.0 deg must divide 360"),
-    "direction_sector_7": ({"selection": {"discrete": {"direction_sector": 7.0}}}, r"'selection\.discrete\.direction_sector' = 7\.0 deg must divide 360"),
-    "regime_lists_differ": ({"hindcast": {"synthetic": {"wind": {"regime_spreads": [20.0, 20.0]}}}}, r"hindcast\.synthetic\.wind\.regime_spreads \(2 values\)"),
-    "fetch_lists_differ": ({"hindcast": {"synthetic": {"wind_sea": {"fetch_km": [100.0]}}}}, r"hindcast\.synthetic\.wind_sea\.fetch_km \(1 values\)"),
-    "file_source_no_path": ({"hindcast": {"source": "file"}}, r"'hindcast\.path' = None: a path is required when 'hindcast\.source' is 'file'"),
+    "direction_sector_7": (
+        {"selection": {"discrete": {"direction_sector": 7.0}}},
+        r"'selection\.discrete\.direction_sector' = 7\.0 deg must divide 360",
+    ),
+    "regime_lists_differ": (
+        {"hindcast": {"synthetic": {"wind": {"regime_spreads": [20.0, 20.0]}}}},
+        r"hindcast\.synthetic\.wind\.regime_spreads \(2 values\)",
+    ),
+    "fetch_lists_differ": (
+        {"hindcast": {"synthetic": {"wind_sea": {"fetch_km": [100.0]}}}},
+        r"hindcast\.synthetic\.wind_sea\.fetch_km \(1 values\)",
+    ),
+    "file_source_no_path": (
+        {"hindcast": {"source": "file"}},
+        r"'hindcast\.path' = None: a path is required when 'hindcast\.source' is 'file'",
+    ),
     "wamit_no_prefix": ({"hydro": {"source": "wamit"}}, r"'hydro\.wamit_prefix' = None: a path prefix is required"),
-    "sensitivity_steep_state": ({"lifecycle": {"sensitivity": {"sea_state": {"hs": 20.0, "tp": 3.0}}}}, r"'lifecycle\.sensitivity\.sea_state\.hs' = 20\.0, '\.tp' = 3\.0: not a possible sea state"),
+    "sensitivity_steep_state": (
+        {"lifecycle": {"sensitivity": {"sea_state": {"hs": 20.0, "tp": 3.0}}}},
+        r"'lifecycle\.sensitivity\.sea_state\.hs' = 20\.0, '\.tp' = 3\.0: not a possible sea state",
+    ),
     # item 7: a date that is not one, a time off the hour
-    "start_yesterday": ({"hindcast": {"start": "yesterday"}}, r"'hindcast\.start' = 'yesterday' is not an ISO 8601 time"),
-    "start_off_the_hour": ({"hindcast": {"start": "1985-01-01T00:30"}}, r"'hindcast\.start' = '1985-01-01T00:30' is not on a whole hour"),
-    "end_before_start": ({"hindcast": {"end": "1984-12-31T23:00"}}, r"'hindcast\.end' = '1984-12-31T23:00' is before 'hindcast\.start' = '1985-01-01T00:00'"),
+    "start_yesterday": (
+        {"hindcast": {"start": "yesterday"}},
+        r"'hindcast\.start' = 'yesterday' is not an ISO 8601 time",
+    ),
+    "start_off_the_hour": (
+        {"hindcast": {"start": "1985-01-01T00:30"}},
+        r"'hindcast\.start' = '1985-01-01T00:30' is not on a whole hour",
+    ),
+    "end_before_start": (
+        {"hindcast": {"end": "1984-12-31T23:00"}},
+        r"'hindcast\.end' = '1984-12-31T23:00' is before 'hindcast\.start' = '1985-01-01T00:00'",
+    ),
 }
 
 
@@ -352,8 +467,11 @@ def test_issue20_sensitivity_system_not_in_table():
     """item 8: `lifecycle.sensitivity.mooring_system: MS9` used to drop the sensitivities silently."""
     cfg = _base(QUICK, {"lifecycle": {"sensitivity": {"mooring_system": "MS9"}}})
     ids = list(read_mooring_systems(ROOT / "config" / "mooring_systems.tsv").index)
-    with pytest.raises(ConfigError, match=r"bad\.yaml: config key 'lifecycle\.sensitivity\.mooring_system' = 'MS9' "
-                                          r"is not a mooring system of the table config/mooring_systems\.tsv \(MS1, "):
+    with pytest.raises(
+        ConfigError,
+        match=r"bad\.yaml: config key 'lifecycle\.sensitivity\.mooring_system' = 'MS9' "
+        r"is not a mooring system of the table config/mooring_systems\.tsv \(MS1, ",
+    ):
         check_against_table(cfg, ids, "bad.yaml")
     check_against_table(_base(QUICK), ids, "good.yaml")
 
@@ -363,8 +481,11 @@ def test_issue20_corrosion_consumes_the_link():
     table = read_mooring_systems(ROOT / "config" / "mooring_systems.tsv")
     d = dict(table["link_diameter_mm"])
     cfg = validate_config(_base(QUICK, {"fatigue": {"corrosion": {"rate": 5.0}}}), read_yaml(SCHEMA))
-    with pytest.raises(ConfigError, match=r"bad\.yaml: config keys 'fatigue\.corrosion\.rate' = 5\.0 mm/year over "
-                                          r"'fatigue\.design_life' = 25\.0 years remove 125 mm, the whole \d+ mm link of MS1"):
+    with pytest.raises(
+        ConfigError,
+        match=r"bad\.yaml: config keys 'fatigue\.corrosion\.rate' = 5\.0 mm/year over "
+        r"'fatigue\.design_life' = 25\.0 years remove 125 mm, the whole \d+ mm link of MS1",
+    ):
         check_against_table(cfg, list(table.index), "bad.yaml", d)
     check_against_table(validate_config(_base(QUICK), read_yaml(SCHEMA)), list(table.index), "good.yaml", d)
 
@@ -419,7 +540,9 @@ def test_issue20_bad_mooring_table(tmp_path, kind, pattern):
 
 def test_issue20_mooring_table_missing(tmp_path):
     p = tmp_path / "nope.tsv"
-    with pytest.raises(ValueError, match=re.escape(str(p)) + r": no such mooring-system table \(config key 'mooring_systems'\)"):
+    with pytest.raises(
+        ValueError, match=re.escape(str(p)) + r": no such mooring-system table \(config key 'mooring_systems'\)"
+    ):
         read_mooring_systems(p)
 
 
@@ -427,9 +550,17 @@ def test_issue20_mooring_table_missing(tmp_path):
 @pytest.mark.parametrize(
     ("path", "value", "pattern"),
     [
-        (("platform", "cm"), [0.0, -13.46], r"platform\.cm = \[0\.0, -13\.46\] must be a list of 3 numbers \(x, y, z in m\)"),
+        (
+            ("platform", "cm"),
+            [0.0, -13.46],
+            r"platform\.cm = \[0\.0, -13\.46\] must be a list of 3 numbers \(x, y, z in m\)",
+        ),
         (("rna", "inertia_cm"), [1.0, 2.0], r"rna\.inertia_cm = \[1\.0, 2\.0\] must be a list of 3 numbers"),
-        (("mooring_stiffness_diag",), [1.0] * 5, r"mooring_stiffness_diag = \[1\.0, 1\.0, 1\.0, 1\.0, 1\.0\] must be a list of 6"),
+        (
+            ("mooring_stiffness_diag",),
+            [1.0] * 5,
+            r"mooring_stiffness_diag = \[1\.0, 1\.0, 1\.0, 1\.0, 1\.0\] must be a list of 6",
+        ),
         (("tower", "mass"), "2.5e5", r"tower\.mass\[0\] = '2\.5e5' is not a number"),
     ],
     ids=["cm_of_length_2", "inertia_of_length_2", "stiffness_of_length_5", "mass_as_text"],
@@ -492,10 +623,19 @@ def _copy_workflow(tmp_path: Path) -> None:
 
 E2E = {
     "dt_1": ("simulation:\n  dt: 1.0\n", r"bad\.yaml.*config key 'simulation\.dt' = 1\.0 s cannot resolve"),
-    "block_150": ("statistics:\n  block: 150.0\n", r"bad\.yaml.*config key 'statistics\.block' = 150\.0 s: the kept record"),
-    "sensitivity_MS9": ("lifecycle:\n  sensitivity:\n    mooring_system: MS9\n", r"'lifecycle\.sensitivity\.mooring_system' = 'MS9' is not a mooring system"),
+    "block_150": (
+        "statistics:\n  block: 150.0\n",
+        r"bad\.yaml.*config key 'statistics\.block' = 150\.0 s: the kept record",
+    ),
+    "sensitivity_MS9": (
+        "lifecycle:\n  sensitivity:\n    mooring_system: MS9\n",
+        r"'lifecycle\.sensitivity\.mooring_system' = 'MS9' is not a mooring system",
+    ),
     "comma_table": ("mooring_systems: comma.tsv\n", r"comma\.tsv: the mooring-system table is comma-separated"),
-    "platform_cm": ("platform: platform2.yaml\n", r"platform2\.yaml: platform\.cm = \[0\.0, 0\.0\] must be a list of 3"),
+    "platform_cm": (
+        "platform: platform2.yaml\n",
+        r"platform2\.yaml: platform\.cm = \[0\.0, 0\.0\] must be a list of 3",
+    ),
 }
 
 
@@ -510,8 +650,13 @@ def test_issue20_snakemake_refuses_at_parse_time(tmp_path, case):
     text, pattern = E2E[case]
     (tmp_path / "bad.yaml").write_text(text)
     snakemake = str(Path(sys.executable).parent / "snakemake")
-    res = subprocess.run([snakemake, "--cores", "1", "--configfile", "config/quick.yaml", "bad.yaml"],
-                         cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    res = subprocess.run(
+        [snakemake, "--cores", "1", "--configfile", "config/quick.yaml", "bad.yaml"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert res.returncode == 1, res.stderr[-2000:]
     assert re.search(pattern, res.stderr + res.stdout, flags=re.S), res.stderr[-3000:]
     assert not (tmp_path / "results").exists(), "no job ran, nothing was written"

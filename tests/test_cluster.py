@@ -50,15 +50,44 @@ def external_cluster(tmp_path):
     procs: list[subprocess.Popen] = []
     addr = f"tcp://127.0.0.1:{port}"
     try:
-        procs.append(subprocess.Popen(
-            [str(BIN / "dask"), "scheduler", "--host", "127.0.0.1", "--port", str(port),
-             "--dashboard-address", "127.0.0.1:0"],
-            env=env, stdout=subprocess.DEVNULL, stderr=open(tmp_path / "scheduler.log", "w")))
+        procs.append(
+            subprocess.Popen(
+                [
+                    str(BIN / "dask"),
+                    "scheduler",
+                    "--host",
+                    "127.0.0.1",
+                    "--port",
+                    str(port),
+                    "--dashboard-address",
+                    "127.0.0.1:0",
+                ],
+                env=env,
+                stdout=subprocess.DEVNULL,
+                stderr=open(tmp_path / "scheduler.log", "w"),
+            )
+        )
         for i in range(2):
-            procs.append(subprocess.Popen(
-                [str(BIN / "dask"), "worker", addr, "--nthreads", "1", "--no-nanny",
-                 "--host", "127.0.0.1", "--name", f"w{i}", "--no-dashboard"],
-                env=env, stdout=subprocess.DEVNULL, stderr=open(tmp_path / f"worker{i}.log", "w")))
+            procs.append(
+                subprocess.Popen(
+                    [
+                        str(BIN / "dask"),
+                        "worker",
+                        addr,
+                        "--nthreads",
+                        "1",
+                        "--no-nanny",
+                        "--host",
+                        "127.0.0.1",
+                        "--name",
+                        f"w{i}",
+                        "--no-dashboard",
+                    ],
+                    env=env,
+                    stdout=subprocess.DEVNULL,
+                    stderr=open(tmp_path / f"worker{i}.log", "w"),
+                )
+            )
         from distributed import Client
 
         deadline = time.time() + 60
@@ -89,12 +118,12 @@ def external_cluster(tmp_path):
 def test_external_scheduler_matches_local_cluster(tmp_path, cases, external_cluster, monkeypatch):
     addr, procs = external_cluster
     local = tmp_path / "local" / "results" / "sim.zarr"
-    map_cases(slow_case, cases, local, dim="case", func_kwargs={"scale": 2.0},
-                       batch_size=3, fingerprint="f", threads=1)
+    map_cases(slow_case, cases, local, dim="case", func_kwargs={"scale": 2.0}, batch_size=3, fingerprint="f", threads=1)
     monkeypatch.setenv(parallel.SCHEDULER_ENV, addr)
     remote = tmp_path / "remote" / "results" / "sim.zarr"
-    map_cases(slow_case, cases, remote, dim="case", func_kwargs={"scale": 2.0},
-                       batch_size=3, fingerprint="f", threads=1)
+    map_cases(
+        slow_case, cases, remote, dim="case", func_kwargs={"scale": 2.0}, batch_size=3, fingerprint="f", threads=1
+    )
     a, b = mio.open_zarr(local), mio.open_zarr(remote)
     worker_pids = {p.pid for p in procs[1:]}
     assert set(np.unique(b["pid"].values)) <= worker_pids, "the external workers must do the work"
@@ -118,8 +147,16 @@ def test_worker_killed_mid_run_is_rescheduled(tmp_path, cases, external_cluster,
 
     killer = threading.Thread(target=kill_when_started)
     killer.start()
-    ds = map_cases(slow_case, cases, out, dim="case", func_kwargs={"scale": 2.0, "pause": 0.4},
-                            batch_size=2, fingerprint="k", threads=1)
+    ds = map_cases(
+        slow_case,
+        cases,
+        out,
+        dim="case",
+        func_kwargs={"scale": 2.0, "pause": 0.4},
+        batch_size=2,
+        fingerprint="k",
+        threads=1,
+    )
     killer.join()
     assert victim.poll() is not None, "the victim worker should be dead"
     survivor = procs[2].pid

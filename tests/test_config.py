@@ -97,7 +97,10 @@ def test_mooring_table_matches_paper_table4():
     ("edit", "pattern"),
     [
         (lambda d: d.drop(columns="EA_N"), r"missing column\(s\) \['EA_N'\]"),
-        (lambda d: d.assign(EA_N=[5.43e8, -1, 1, 1, 1, 1]), r"row 3 \(MS2\), column 'EA_N': -1(\.0)? must be a positive number"),
+        (
+            lambda d: d.assign(EA_N=[5.43e8, -1, 1, 1, 1, 1]),
+            r"row 3 \(MS2\), column 'EA_N': -1(\.0)? must be a positive number",
+        ),
         (lambda d: d.assign(mooring_system=["MS1", "MS1", "a", "b", "c", "d"]), r"duplicated id 'MS1'"),
         (lambda d: d.assign(chain=["studless", "studlink", "stud", "stud", "stud", "stud"]), r"row 3, column 'chain'"),
         (lambda d: d.assign(mooring_system=["MS 1", "b", "c", "d", "e", "f"]), r"'MS 1' is not a valid id"),

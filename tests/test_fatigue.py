@@ -103,7 +103,9 @@ def test_astm_example_closed_residue():
     """Closing the residue = counting the sequence repeated: start at the maximum 5
     (5,-1,3,-4,4,-2,1,-3,5) -> full cycles 4, 3, 7 and the 9 of max-min."""
     r, m, c = rainflow([-2, 1, -3, 5, -1, 3, -4, 4, -2], residue="close")
-    assert _multiset(r, m, c) == Counter({(3.0, -0.5, 1.0): 1, (4.0, 1.0, 1.0): 1, (7.0, 0.5, 1.0): 1, (9.0, 0.5, 1.0): 1})
+    assert _multiset(r, m, c) == Counter(
+        {(3.0, -0.5, 1.0): 1, (4.0, 1.0, 1.0): 1, (7.0, 0.5, 1.0): 1, (9.0, 0.5, 1.0): 1}
+    )
 
 
 def test_turning_points_plateaus_and_ends():
@@ -193,6 +195,7 @@ def _periodic_count(block, periods=3):
     package (ASTM half-cycle residue) alone: the count of ``periods + 1`` repetitions minus
     that of ``periods``. The start-up and the residue cancel; one period of closed cycles is
     left (checked to be the same from 2 to 4 periods)."""
+
     def count(x):
         out: Counter = Counter()
         for rng, mean, cnt, _, _ in rf_peer.extract_cycles(list(x)):
@@ -231,7 +234,7 @@ def test_rainflow_matches_the_reference_counter(x, residue):
 @given(_ties)
 @example([3.0, 1.0, 3.0, 0.0])
 def test_closed_residue_is_one_period_of_the_repeated_record(block):
-    """"close" treats the record as one period of a periodic signal: its cycles are those of
+    """ "close" treats the record as one period of a periodic signal: its cycles are those of
     one period (independent count), and a record of k periods has k times its cycles."""
     once = _full_cycles(*rainflow(np.array(block), residue="close"))
     assert once == _periodic_count(block)
@@ -623,7 +626,9 @@ def test_dirlik_pdf_normalised_and_consistent_with_dirlik_damage():
     nu_p = math.sqrt(m4 / m2)
     d_int = nu_p * 3600.0 * np.trapezoid(grid**3 * p, grid) / 6e10
     assert d_int == pytest.approx(float(dirlik_damage(f, s, 3600.0, 6e10, 3.0)), rel=1e-6)
-    x, fx, sx = _gaussian_process(lambda ff: _bump(ff, 0.012, 0.002, 50.0) + _bump(ff, 0.1, 0.015, 100.0), 2**20, 0.25, 3)
+    x, fx, sx = _gaussian_process(
+        lambda ff: _bump(ff, 0.012, 0.002, 50.0) + _bump(ff, 0.1, 0.015, 100.0), 2**20, 0.25, 3
+    )
     r, _, c = rainflow(x)
     mean_pdf = np.trapezoid(grid * fat.dirlik_pdf(grid, fx, sx), grid)
     assert np.dot(c, r) / c.sum() == pytest.approx(mean_pdf, rel=0.05)

@@ -60,12 +60,10 @@ def test_map_cases_disk_full_never_promotes(tmp_path, monkeypatch):
 
     monkeypatch.setattr(partial, "_write_batch", flaky)
     with pytest.raises(OSError, match="No space left on device"):
-        map_cases(_case, cases, out, dim="case", func_kwargs={}, batch_size=2,
-                           fingerprint="d", threads=1)
+        map_cases(_case, cases, out, dim="case", func_kwargs={}, batch_size=2, fingerprint="d", threads=1)
     assert not out.exists(), "a failed write must never be promoted to the declared output"
     monkeypatch.setattr(partial, "_write_batch", real)
-    ds = map_cases(_case, cases, out, dim="case", func_kwargs={}, batch_size=2,
-                            fingerprint="d", threads=1)
+    ds = map_cases(_case, cases, out, dim="case", func_kwargs={}, batch_size=2, fingerprint="d", threads=1)
     np.testing.assert_array_equal(ds["surge_mpm"].values, np.arange(6.0) * 2)
 
 
@@ -89,8 +87,14 @@ def test_failed_promote_then_rerun_computes_nothing(tmp_path, monkeypatch):
     out = tmp_path / "results" / "MS1" / "simulations.zarr"
     rec = tmp_path / "rec"
     rec.mkdir()
-    kw = dict(dim="case", func_kwargs={"record_dir": str(rec)}, batch_size=2, fingerprint="fp-x", threads=1,
-              attrs={"mooring_system": "MS1"})
+    kw = dict(
+        dim="case",
+        func_kwargs={"record_dir": str(rec)},
+        batch_size=2,
+        fingerprint="fp-x",
+        threads=1,
+        attrs={"mooring_system": "MS1"},
+    )
     monkeypatch.setattr(mio, "promote", exdev)
     with pytest.raises(OSError, match="cross-device"):
         map_cases(_recorded_case, cases, out, **kw)
@@ -154,12 +158,23 @@ def _source_files() -> list[Path]:
 
 @pytest.mark.parametrize(
     "pattern",
-    [r"\bpickle\.loads?\(", r"\beval\(", r"\bexec\(", r"yaml\.load\((?![^)]*SafeLoader)", r"shell\s*=\s*True",
-     r"allow_pickle\s*=\s*True", r"os\.system\("],
+    [
+        r"\bpickle\.loads?\(",
+        r"\beval\(",
+        r"\bexec\(",
+        r"yaml\.load\((?![^)]*SafeLoader)",
+        r"shell\s*=\s*True",
+        r"allow_pickle\s*=\s*True",
+        r"os\.system\(",
+    ],
 )
 def test_no_unsafe_loading_or_shell(pattern):
-    hits = [f"{p.relative_to(ROOT)}:{i}" for p in _source_files()
-            for i, line in enumerate(p.read_text().splitlines(), 1) if re.search(pattern, line)]
+    hits = [
+        f"{p.relative_to(ROOT)}:{i}"
+        for p in _source_files()
+        for i, line in enumerate(p.read_text().splitlines(), 1)
+        if re.search(pattern, line)
+    ]
     assert hits == [], f"unsafe construct {pattern!r} at {hits}"
 
 
@@ -169,5 +184,6 @@ def test_shell_rules_quote_every_value():
         text = smk.read_text()
         for block in re.findall(r"shell:\s*\n?\s*((?:\"\"\".*?\"\"\")|(?:\".*?\"))", text, flags=re.S):
             for field in re.findall(r"(?<!\{)\{([^{}]+)\}(?!\})", block):
-                assert field.endswith(":q") or field in {"threads", "log", "log[0]"}, \
+                assert field.endswith(":q") or field in {"threads", "log", "log[0]"}, (
                     f"{smk.name}: shell placeholder {{{field}}} is not quoted with :q"
+                )

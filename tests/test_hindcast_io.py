@@ -22,8 +22,7 @@ N = 48
 START, END = "2000-01-01T00:00", "2000-01-02T23:00"
 
 NORA3_HEADER = (
-    "#NORA3_wave_sub DATA. LONGITUDE:1.3358, LATITUDE:53.3249\n"
-    "#NORA3_wind_sub DATA. LONGITUDE:1.32, LATITUDE:53.3237\n"
+    "#NORA3_wave_sub DATA. LONGITUDE:1.3358, LATITUDE:53.3249\n#NORA3_wind_sub DATA. LONGITUDE:1.32, LATITUDE:53.3237\n"
 )
 ERA5_HEADER = (
     "#ERA5,LONGITUDE:109.939,LATITUDE:15.509,\n"
@@ -114,7 +113,9 @@ def test_era5_waves_only_needs_wind(tmp_path):
     t = pd.date_range("2000-01-01", periods=N, freq="h")
     df = pd.DataFrame({"time": t.strftime("%Y-%m-%d %H:%M:%S"), "pp1d": 7.2, "swh": 1.3, "mwd": 49.7})
     p = write_csv(tmp_path / "era5.csv", df, ERA5_HEADER)
-    with pytest.raises(HindcastError, match=r"era5\.csv: the file holds waves only .*wind speed and direction are required"):
+    with pytest.raises(
+        HindcastError, match=r"era5\.csv: the file holds waves only .*wind speed and direction are required"
+    ):
         load(p)
     ds = load(p, require_wind=False)
     assert set(ds.data_vars) == {"hs", "tp", "wave_dir"}
@@ -172,14 +173,21 @@ def test_netcdf_gridded_valid_time_picks_site(tmp_path):
 def test_netcdf_era5_expver_merged(tmp_path):
     t = pd.date_range("2000-01-01", periods=N, freq="h")
     half = N // 2
+
     def two(x):
         a = np.full((N, 2), np.nan)
         a[:half, 0], a[half:, 1] = x[:half], x[half:]  # ERA5 then ERA5T
         return (("time", "expver"), a)
+
     k = np.arange(N, dtype=float)
     ds0 = xr.Dataset(
-        {"swh": two(1.0 + 0.01 * k), "pp1d": two(np.full(N, 9.0)), "mwd": two(np.full(N, 300.0)),
-         "u10": two(np.full(N, 3.0)), "v10": two(np.full(N, 4.0))},
+        {
+            "swh": two(1.0 + 0.01 * k),
+            "pp1d": two(np.full(N, 9.0)),
+            "mwd": two(np.full(N, 300.0)),
+            "u10": two(np.full(N, 3.0)),
+            "v10": two(np.full(N, 4.0)),
+        },
         coords={"time": t, "expver": [1, 5]},
     )
     p = tmp_path / "expver.nc"
@@ -192,8 +200,13 @@ def test_netcdf_era5_expver_merged(tmp_path):
 def test_zarr_generic_speed_direction_needs_height(tmp_path):
     t = pd.date_range("2000-01-01", periods=N, freq="h")
     ds0 = xr.Dataset(
-        {"hs": ("time", np.full(N, 2.0)), "tp": ("time", np.full(N, 10.0)), "mwd": ("time", np.full(N, 300.0)),
-         "wind_speed": ("time", np.full(N, 10.0)), "wind_direction": ("time", np.full(N, 270.0))},
+        {
+            "hs": ("time", np.full(N, 2.0)),
+            "tp": ("time", np.full(N, 10.0)),
+            "mwd": ("time", np.full(N, 300.0)),
+            "wind_speed": ("time", np.full(N, 10.0)),
+            "wind_direction": ("time", np.full(N, 270.0)),
+        },
         coords={"time": t},
     )
     p = tmp_path / "h.zarr"
@@ -207,8 +220,9 @@ def test_zarr_generic_speed_direction_needs_height(tmp_path):
 
 def test_column_map(tmp_path):
     t = pd.date_range("2000-01-01", periods=N, freq="h")
-    df = pd.DataFrame({"time": t.strftime("%Y-%m-%dT%H:%M"), "Hsig": 1.5, "Tpeak": 11.0, "Dir": 310.0,
-                       "U": 3.0, "V": -4.0})
+    df = pd.DataFrame(
+        {"time": t.strftime("%Y-%m-%dT%H:%M"), "Hsig": 1.5, "Tpeak": 11.0, "Dir": 310.0, "U": 3.0, "V": -4.0}
+    )
     p = write_csv(tmp_path / "custom.csv", df, "")
     cols = {"hs": "Hsig", "tp": "Tpeak", "wave_dir": "Dir", "wind_u": "U", "wind_v": "V"}
     ds = load(p, columns=cols, measured_height=90.0)
@@ -240,7 +254,10 @@ def test_nan_value_error_and_gap_policy(tmp_path, caplog):
     df.loc[10, "hs"] = np.nan
     p = _bad(tmp_path, df)
     line = data_line(p, 10)
-    with pytest.raises(HindcastError, match=rf"bad\.csv: column 'hs', row {line} \(time 2000-01-01T10:00:00\): 1 hour\(s\) missing or NaN"):
+    with pytest.raises(
+        HindcastError,
+        match=rf"bad\.csv: column 'hs', row {line} \(time 2000-01-01T10:00:00\): 1 hour\(s\) missing or NaN",
+    ):
         load(p)
     with caplog.at_level(logging.WARNING, logger="moorlife"):
         ds = load(p, cleaning=CleaningPolicy.from_config({"max_gap_hours": 1}))
@@ -251,7 +268,9 @@ def test_nan_value_error_and_gap_policy(tmp_path, caplog):
 def test_missing_rows_error_and_gap_policy(tmp_path):
     df = nora3_frame().drop(index=[20, 21, 22]).reset_index(drop=True)
     p = _bad(tmp_path, df)
-    with pytest.raises(HindcastError, match=rf"missing row after row {data_line(p, 19)} \(time 2000-01-01T20:00:00\): 3 hour\(s\)"):
+    with pytest.raises(
+        HindcastError, match=rf"missing row after row {data_line(p, 19)} \(time 2000-01-01T20:00:00\): 3 hour\(s\)"
+    ):
         load(p)
     with pytest.raises(HindcastError, match="max_gap_hours = 2"):
         load(p, cleaning=CleaningPolicy.from_config({"max_gap_hours": 2}))
@@ -316,7 +335,9 @@ def test_duplicated_timestamps(tmp_path):
     df = nora3_frame()
     df = pd.concat([df.iloc[:6], df.iloc[5:6], df.iloc[6:]], ignore_index=True)
     p = _bad(tmp_path, df)
-    with pytest.raises(HindcastError, match=rf"column 'time', row {data_line(p, 6)}: duplicated timestamp 2000-01-01 05:00:00"):
+    with pytest.raises(
+        HindcastError, match=rf"column 'time', row {data_line(p, 6)}: duplicated timestamp 2000-01-01 05:00:00"
+    ):
         load(p)
     ds = load(p, cleaning=CleaningPolicy.from_config({"duplicates": "first"}))
     assert ds.sizes["time"] == N
@@ -326,7 +347,9 @@ def test_unsorted_timestamps(tmp_path):
     df = nora3_frame()
     df = pd.concat([df.iloc[:5], df.iloc[[6, 5]], df.iloc[7:]], ignore_index=True)
     p = _bad(tmp_path, df)
-    with pytest.raises(HindcastError, match=rf"row {data_line(p, 6)}: 2000-01-01 05:00:00 comes after 2000-01-01 06:00:00"):
+    with pytest.raises(
+        HindcastError, match=rf"row {data_line(p, 6)}: 2000-01-01 05:00:00 comes after 2000-01-01 06:00:00"
+    ):
         load(p)
     ds = load(p, cleaning=CleaningPolicy.from_config({"unsorted": "sort"}))
     np.testing.assert_allclose(ds["hs"], nora3_frame()["hs"])
@@ -341,7 +364,10 @@ def test_non_hourly_steps(tmp_path):
     df = nora3_frame()
     df.loc[9, "time"] = "2000-01-01 09:30:00"
     p = _bad(tmp_path, df, name="half.csv")
-    with pytest.raises(HindcastError, match=rf"half\.csv: column 'time', row {data_line(p, 9)}: 2000-01-01 09:30:00 is not on a whole hour"):
+    with pytest.raises(
+        HindcastError,
+        match=rf"half\.csv: column 'time', row {data_line(p, 9)}: 2000-01-01 09:30:00 is not on a whole hour",
+    ):
         load(p)
 
 
@@ -381,7 +407,10 @@ def test_absurd_units(tmp_path):
     df = nora3_frame()
     df["hs"] = df["hs"] * 100.0  # cm
     p = _bad(tmp_path, df)
-    with pytest.raises(HindcastError, match=rf"column 'hs', row {data_line(p, 0)} .*value 100 exceeds the plausible maximum 25 \(Hs in cm"):
+    with pytest.raises(
+        HindcastError,
+        match=rf"column 'hs', row {data_line(p, 0)} .*value 100 exceeds the plausible maximum 25 \(Hs in cm",
+    ):
         load(p)
     df = nora3_frame()
     df["wind_speed_100m"] = df["wind_speed_100m"] * 3.6 * 3  # nonsense, e.g. km/h of a storm
@@ -415,7 +444,9 @@ def test_impossible_sea_states_refused_dropped_or_clipped(tmp_path, caplog):
 
     df = nora3_frame()
     p = write_csv(tmp_path / "bad.csv", _impossible(df))
-    with pytest.raises(HindcastError, match=rf"bad\.csv: columns 'hs'/'tp', row {data_line(p, 5)} .*tp = 0\.01 s .*\(2 such row"):
+    with pytest.raises(
+        HindcastError, match=rf"bad\.csv: columns 'hs'/'tp', row {data_line(p, 5)} .*tp = 0\.01 s .*\(2 such row"
+    ):
         load(p)
     # drop: the rows become gaps, interpolated within max_gap_hours (else refused as gaps)
     with pytest.raises(HindcastError, match=r"1 hour\(s\) missing or NaN"):
@@ -434,7 +465,9 @@ def test_impossible_sea_states_refused_dropped_or_clipped(tmp_path, caplog):
     g2pi = 9.80665 / (2 * np.pi)
     assert float(ds["hs"][5]) == df["hs"][5] and float(ds["hs"][9]) == 20.0
     for i, h in ((5, df["hs"][5]), (9, 20.0)):  # the breaking limit binds (above the floor)
-        np.testing.assert_allclose(float(ds["tp"][i]), max(TP_FLOOR, np.sqrt(h / (g2pi * BREAKING_STEEPNESS))), rtol=1e-12)
+        np.testing.assert_allclose(
+            float(ds["tp"][i]), max(TP_FLOOR, np.sqrt(h / (g2pi * BREAKING_STEEPNESS))), rtol=1e-12
+        )
     assert not check_sea_states(ds["hs"].values, ds["tp"].values).bad.any()
     np.testing.assert_array_equal(np.delete(ds["tp"].values, [5, 9]), np.delete(df["tp"].values, [5, 9]))
     with pytest.raises(HindcastError, match=r"hindcast\.cleaning\.sea_states = 'maybe': expected one of"):
@@ -456,10 +489,12 @@ def test_steepness_kernel_limits():
 
 @pytest.mark.parametrize(
     "stamp",
-    [lambda t: t.strftime("%Y-%m-%dT%H:%M:%SZ"),  # ERA5 style "Z"
-     lambda t: (t + pd.Timedelta(hours=1)).strftime("%Y-%m-%d %H:%M:%S+01:00"),
-     # CET/CEST: the offset changes at the end of March (mixed DST offsets in one file)
-     lambda t: t.tz_localize("UTC").tz_convert("Europe/Madrid").isoformat()],
+    [
+        lambda t: t.strftime("%Y-%m-%dT%H:%M:%SZ"),  # ERA5 style "Z"
+        lambda t: (t + pd.Timedelta(hours=1)).strftime("%Y-%m-%d %H:%M:%S+01:00"),
+        # CET/CEST: the offset changes at the end of March (mixed DST offsets in one file)
+        lambda t: t.tz_localize("UTC").tz_convert("Europe/Madrid").isoformat(),
+    ],
     ids=["Z", "plus_0100", "dst_offsets"],
 )
 def test_timezone_aware_timestamps_converted_to_utc(tmp_path, stamp):
@@ -482,6 +517,8 @@ def test_bom_before_header_lines(tmp_path):
 def test_constant_input_refused(tmp_path):
     df = nora3_frame().assign(wind_speed_10m=0.0, wind_speed_100m=0.0, wind_speed_250m=0.0)
     p = write_csv(tmp_path / "calm.csv", df)
-    with pytest.raises(HindcastError, match=r"calm\.csv: column 'wind_speed_100m' \(variable wind_speed\) is constant, 0"):
+    with pytest.raises(
+        HindcastError, match=r"calm\.csv: column 'wind_speed_100m' \(variable wind_speed\) is constant, 0"
+    ):
         load(p, require_varying=True)
     assert load(p, require_wind=False)["hs"].size == N  # waves-only inspection: not checked

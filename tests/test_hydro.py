@@ -30,6 +30,7 @@ def model(platform_cfg):
 
 # ------------------------------------------------------------------ geometry, mesh
 
+
 def _column(d=10.0, z0=-20.0, z1=5.0, xy=(0.0, 0.0)):
     return hydro.Member("c", "column", np.array([*xy, z0]), np.array([*xy, z1]), d, 0.6)
 
@@ -98,13 +99,18 @@ def test_around_refinement_refines_around_only():
         upper = wall & (c[:, 2] > -14.0)
         assert np.unique(np.round(c[upper, 2], 6)).size == 12  # 14 m in 1.2 m rows, either way
         assert np.sum(upper) == 12 * k * hydro.n_around(6.0, 1.2)
-        np.testing.assert_allclose(np.linalg.norm(area_vec, axis=1).sum(),
-                                   2 * np.pi * (6 * 14 + 12 * 6) + np.pi * 144 * 2 - np.pi * 36, rtol=0.01)
+        np.testing.assert_allclose(
+            np.linalg.norm(area_vec, axis=1).sum(),
+            2 * np.pi * (6 * 14 + 12 * 6) + np.pi * 144 * 2 - np.pi * 36,
+            rtol=0.01,
+        )
     lv, _ = hydro.lid_panels([base, col], 1.2, around=2.0)
     rim = lv[np.isclose(np.hypot(lv[:, 0], lv[:, 1]), np.hypot(lv[:, 0], lv[:, 1]).max())]
     top = v2[np.isclose(v2[:, 2], 0.0)]
     assert len(rim) == len(top) == 2 * hydro.n_around(6.0, 1.2)
-    np.testing.assert_allclose(np.sort(np.arctan2(rim[:, 1], rim[:, 0])), np.sort(np.arctan2(top[:, 1], top[:, 0])), atol=1e-12)
+    np.testing.assert_allclose(
+        np.sort(np.arctan2(rim[:, 1], rim[:, 0])), np.sort(np.arctan2(top[:, 1], top[:, 0])), atol=1e-12
+    )
     with pytest.raises(ValueError, match="around must be > 0"):
         hydro.hull_panels([base, col], 1.2, around=0.0)
 
@@ -181,6 +187,7 @@ def test_read_platform_config_checks_blocks(tmp_path, platform_cfg):
 
 # ------------------------------------------------------------ rigid body, statics
 
+
 def test_rigid_body_mass_matrix_point_mass():
     m, r = 2.0, np.array([1.0, -2.0, 3.0])
     M = hydro.rigid_body_mass_matrix(m, r, np.zeros(3))
@@ -209,6 +216,7 @@ def test_natural_periods_closed_form():
 
 
 # ------------------------------------------------------------------------ radiation
+
 
 def _gauss_pair(a=4.0):
     # B(w) = w^2 exp(-a w^2)  <->  K(t) = (2/pi) sqrt(pi)/(4 a^1.5) exp(-t^2/4a) (1 - t^2/(2a))
@@ -240,13 +248,17 @@ def test_state_space_fit_closed_form():
 
 # --------------------------------------------------------------- drift, excitation
 
+
 def test_newman_two_components_closed_form():
     t = np.linspace(0, 500, 2001)
     a, w, ph = np.array([1.5, 0.8]), np.array([0.6, 0.7]), np.array([0.3, -1.1])
     T = np.array([[2e4, 10.0], [5e4, -3.0]])
     F = hydro.newman_drift_force(t, a, w, ph, T)
-    ref = (a[0] ** 2 * T[0] + a[1] ** 2 * T[1]
-           + a[0] * a[1] * (T[0] + T[1]) * np.cos((w[0] - w[1]) * t + ph[0] - ph[1])[:, None])
+    ref = (
+        a[0] ** 2 * T[0]
+        + a[1] ** 2 * T[1]
+        + a[0] * a[1] * (T[0] + T[1]) * np.cos((w[0] - w[1]) * t + ph[0] - ph[1])[:, None]
+    )
     np.testing.assert_allclose(F, ref, rtol=1e-10, atol=1e-8)
 
 
@@ -282,12 +294,26 @@ def test_far_field_drift_matches_capytaine():
     mine = hydro.far_field_drift(omega, k, heads, theta, Hd, Hr, X, water_depth=200.0, rho=1025.0, g=9.80665)
     dofs = list("abcdef")
     ds = xr.Dataset(
-        {"kochin_diffraction": (("omega", "wave_direction", "theta"), Hd),
-         "kochin_radiation": (("omega", "radiating_dof", "theta"), Hr)},
-        coords={"omega": omega, "wave_direction": heads, "theta": theta, "radiating_dof": dofs,
-                "wavenumber": ("omega", k), "water_depth": 200.0, "rho": 1025.0, "g": 9.80665})
-    Xd = xr.DataArray(X, dims=("omega", "wave_direction", "radiating_dof"),
-                      coords={"omega": omega, "wave_direction": heads, "radiating_dof": dofs})
+        {
+            "kochin_diffraction": (("omega", "wave_direction", "theta"), Hd),
+            "kochin_radiation": (("omega", "radiating_dof", "theta"), Hr),
+        },
+        coords={
+            "omega": omega,
+            "wave_direction": heads,
+            "theta": theta,
+            "radiating_dof": dofs,
+            "wavenumber": ("omega", k),
+            "water_depth": 200.0,
+            "rho": 1025.0,
+            "g": 9.80665,
+        },
+    )
+    Xd = xr.DataArray(
+        X,
+        dims=("omega", "wave_direction", "radiating_dof"),
+        coords={"omega": omega, "wave_direction": heads, "radiating_dof": dofs},
+    )
     ref = far_field_mean_drift_force(Xd, ds)
     for j in range(2):
         for ours, name in ((0, "drift_force_surge"), (1, "drift_force_sway"), (5, "drift_force_yaw")):
@@ -312,8 +338,17 @@ def test_bem_phase_convention_is_wamit():
     M = np.diag([1e5, 1e5, 1e5, 1e6, 1e6, 1e6])
     C = np.diag([1e3, 1e3, 1e5, 1e7, 1e7, 1e5])
     w = 0.6
-    ds = hydro.run_bem(body, np.array([w]), np.array([0.0]), water_depth=200.0, rho=1025.0, g=9.80665,
-                       mass_matrix=M, stiffness=C, n_kochin=36)
+    ds = hydro.run_bem(
+        body,
+        np.array([w]),
+        np.array([0.0]),
+        water_depth=200.0,
+        rho=1025.0,
+        g=9.80665,
+        mass_matrix=M,
+        stiffness=C,
+        n_kochin=36,
+    )
     k = hydro.wavenumber(w, 200.0, 9.80665)
     x3 = complex(ds["excitation"].sel(dof="heave").values[0, 0])
     phase_err = np.angle(x3 * np.exp(1j * k * 30.0))
@@ -328,14 +363,23 @@ def test_bem_phase_convention_is_wamit():
 
 # ----------------------------------------------------------------------- Morison drag
 
+
 def test_morison_transverse_and_axial_closed_form():
     rho = 1025.0
     axis = np.array([[0.0, 0.0, 1.0]])
     u = np.array([[[2.0, 0.0, 1.0]]])  # cross-flow 2 m/s plus an axial 1 m/s
     f = hydro.morison_drag_force(u, axis, np.array([3.0]), np.array([6.5]), np.array([0.56]), rho)
     np.testing.assert_allclose(f[0, 0], [0.5 * rho * 0.56 * 6.5 * 3.0 * 4.0, 0.0, 0.0])
-    fa = hydro.morison_drag_force(np.array([[0.0, 0.0, -0.5]]), axis, None, None, None, rho,
-                                  axial_area=np.array([np.pi * 144.0]), axial_cd=np.array([9.6]))
+    fa = hydro.morison_drag_force(
+        np.array([[0.0, 0.0, -0.5]]),
+        axis,
+        None,
+        None,
+        None,
+        rho,
+        axial_area=np.array([np.pi * 144.0]),
+        axial_cd=np.array([9.6]),
+    )
     np.testing.assert_allclose(fa[0], [0.0, 0.0, -0.5 * rho * 9.6 * np.pi * 144.0 * 0.25])
 
 
@@ -358,6 +402,7 @@ def test_morison_elements_cover_submerged_length(platform_cfg):
 
 
 # ------------------------------------------------------------ the simulator's model
+
 
 def test_platform_model_from_fixture(model):
     m = model
@@ -401,8 +446,9 @@ def test_natural_periods_in_the_oc4_convention(model):
 
 
 def test_ogilvie_infinite_added_mass(model):
-    est = hydro.added_mass_infinite_ogilvie(model.omega[model.omega > 0.3], model.added_mass[model.omega > 0.3],
-                                            model.kernel_t, model.kernel)
+    est = hydro.added_mass_infinite_ogilvie(
+        model.omega[model.omega > 0.3], model.added_mass[model.omega > 0.3], model.kernel_t, model.kernel
+    )
     for i in (0, 2, 4):
         np.testing.assert_allclose(est[i, i], model.added_mass_inf[i, i], rtol=0.05)
 
@@ -419,10 +465,14 @@ def test_excitation_at_symmetry(model):
 
 # --------------------------------------------------------------- the hydro rule's params
 
+
 def test_bem_settings_change_only_with_bem_inputs(platform_cfg, study_config):
     cfg = study_config
     base = hydro.bem_settings(cfg["hydro"], platform_cfg)
-    other_ct = {**platform_cfg, "turbine": {**platform_cfg["turbine"], "ct_table": {"wind_speed": [3, 25], "ct": [1, 0.1]}}}
+    other_ct = {
+        **platform_cfg,
+        "turbine": {**platform_cfg["turbine"], "ct_table": {"wind_speed": [3, 25], "ct": [1, 0.1]}},
+    }
     assert hydro.bem_settings(cfg["hydro"], other_ct) == base  # the Ct table does not rerun the BEM
     members = [dict(m) for m in platform_cfg["members"]]
     members[0]["diameter"] = 7.0
@@ -448,18 +498,41 @@ def test_coarse_bem_reproduces_fixture(platform_cfg, quick_config):
     ds = hydro.bem_from_settings(s, n_jobs=1)
     ref = open_platform_nc(FIXTURE).sel(omega=ds["omega"].values, heading=ds["heading"].values, method="nearest")
     for v in ("added_mass", "damping", "excitation", "drift"):
-        np.testing.assert_allclose(ds[v].values, ref[v].values, rtol=1e-3, atol=1e-4 * float(np.max(np.abs(ref[v].values))))
-    np.testing.assert_allclose(ds["added_mass_inf"].values, ref["added_mass_inf"].values, rtol=1e-3,
-                               atol=1e-4 * float(np.max(np.abs(ref["added_mass_inf"].values))))
+        np.testing.assert_allclose(
+            ds[v].values, ref[v].values, rtol=1e-3, atol=1e-4 * float(np.max(np.abs(ref[v].values)))
+        )
+    np.testing.assert_allclose(
+        ds["added_mass_inf"].values,
+        ref["added_mass_inf"].values,
+        rtol=1e-3,
+        atol=1e-4 * float(np.max(np.abs(ref["added_mass_inf"].values))),
+    )
 
 
 def test_richardson_recovers_linear_limit():
     w = np.array([0.5, 1.0])
-    fine = hydro.platform_dataset(w, np.array([0.0]), np.full((2, 6, 6), 12.0), np.full((6, 6), 2.0),
-                                  np.full((2, 6, 6), 5.0), np.full((2, 1, 6), 3.0 + 1.0j), np.eye(6), np.ones((2, 1, 6)),
-                                  water_depth=200.0, rho=1025.0, g=9.81, attrs={"panel_size": 2.0})
+    fine = hydro.platform_dataset(
+        w,
+        np.array([0.0]),
+        np.full((2, 6, 6), 12.0),
+        np.full((6, 6), 2.0),
+        np.full((2, 6, 6), 5.0),
+        np.full((2, 1, 6), 3.0 + 1.0j),
+        np.eye(6),
+        np.ones((2, 1, 6)),
+        water_depth=200.0,
+        rho=1025.0,
+        g=9.81,
+        attrs={"panel_size": 2.0},
+    )
     coarse = fine.copy(deep=True)
-    for v, d in (("added_mass", 2.0), ("added_mass_inf", 1.0), ("damping", -1.0), ("excitation", 0.5 - 0.5j), ("drift", 0.25)):
+    for v, d in (
+        ("added_mass", 2.0),
+        ("added_mass_inf", 1.0),
+        ("damping", -1.0),
+        ("excitation", 0.5 - 0.5j),
+        ("drift", 0.25),
+    ):
         coarse[v] = fine[v] + d  # error doubles with the panel size: F(2h) - F(h) = c h = d
     out = hydro.richardson(fine, coarse, 2.0)
     np.testing.assert_allclose(out["added_mass"].values, 10.0)

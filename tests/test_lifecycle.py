@@ -73,8 +73,9 @@ def test_linear_outputs_rebuilt_exactly_everywhere(rebuilt):
     hc, _, _, ds = rebuilt
     np.testing.assert_allclose(ds["surge_mpm"].values, 2.0 + 0.5 * hc["hs"].values + 0.1 * hc["tp"].values, atol=1e-8)
     np.testing.assert_allclose(ds["tension_mpm"].sel(line="M2").values, 1.2 * (1e6 + 1e5 * hc["hs"].values), rtol=1e-10)
-    np.testing.assert_allclose(ds["validation_r"].sel(output=["surge_mpm", "sway_mpm", "tension_mpm/M1"]).values, 1.0,
-                               atol=1e-10)
+    np.testing.assert_allclose(
+        ds["validation_r"].sel(output=["surge_mpm", "sway_mpm", "tension_mpm/M1"]).values, 1.0, atol=1e-10
+    )
     assert ds["tension_mpm"].attrs["units"] == "N"
 
 
@@ -132,8 +133,10 @@ def test_discrete_table_and_summary(rebuilt):
     hc, _, _, ds = rebuilt
     states = xr.Dataset({"probability": ("bin", [0.25, 0.75])}, coords={"bin": [0, 1]})
     dsims = xr.Dataset(
-        {"damage_sn": (("bin", "line"), [[1e-6, 4e-6, 1e-6], [2e-6, 4e-6, 1e-6]]),
-         "damage_tn": (("bin", "line"), [[1e-6, 2e-6, 1e-6], [1e-6, 2e-6, 1e-6]])},
+        {
+            "damage_sn": (("bin", "line"), [[1e-6, 4e-6, 1e-6], [2e-6, 4e-6, 1e-6]]),
+            "damage_tn": (("bin", "line"), [[1e-6, 2e-6, 1e-6], [1e-6, 2e-6, 1e-6]]),
+        },
         coords={"bin": [0, 1], "line": LINES},
     )
     n = hc.sizes["time"]
@@ -145,18 +148,33 @@ def test_discrete_table_and_summary(rebuilt):
     r = table[(table.line == "M1") & (table.curve == "sn")].iloc[0]
     assert r.difference_pct == pytest.approx(100 * (2e-6 - 1.75e-6) / 2e-6, rel=1e-9)
     assert r.fatigue_life_low <= r.fatigue_life_years <= r.fatigue_life_high
-    for col in ("mooring_system", "line", "curve", "lifecycle_damage", "discrete_damage", "difference_pct",
-                "fatigue_life_years", "design_fatigue_factor", "passes"):
+    for col in (
+        "mooring_system",
+        "line",
+        "curve",
+        "lifecycle_damage",
+        "discrete_damage",
+        "difference_pct",
+        "fatigue_life_years",
+        "design_fatigue_factor",
+        "passes",
+    ):
         assert col in table.columns
 
 
 def test_recommend_picks_the_lightest_passing_system():
     rows = []
-    for ms, mass, ok_sn, ok_tn in (("MS1", 92, False, True), ("MS2", 125.6, True, True), ("MS3", 200, True, True),
-                                   ("MS0", 50, True, False)):
+    for ms, mass, ok_sn, ok_tn in (
+        ("MS1", 92, False, True),
+        ("MS2", 125.6, True, True),
+        ("MS3", 200, True, True),
+        ("MS0", 50, True, False),
+    ):
         for line in LINES:
-            rows += [{"mooring_system": ms, "line": line, "curve": "sn", "passes": ok_sn, "mass_kg_per_m": mass},
-                     {"mooring_system": ms, "line": line, "curve": "tn", "passes": ok_tn, "mass_kg_per_m": mass}]
+            rows += [
+                {"mooring_system": ms, "line": line, "curve": "sn", "passes": ok_sn, "mass_kg_per_m": mass},
+                {"mooring_system": ms, "line": line, "curve": "tn", "passes": ok_tn, "mass_kg_per_m": mass},
+            ]
     t = pd.DataFrame(rows)
     assert lifecycle.recommend(t) == "MS2"
     assert lifecycle.recommend(t, curves=["sn"]) == "MS0"
@@ -176,11 +194,15 @@ def test_seed_lives_and_band():
 def test_mean_stress_table_reproduces_paper_table8_static_rows():
     # Barrera et al. (2019) Table 8 (static position), from Table 4 pretension and link diameter.
     mooring = pd.DataFrame(
-        {"pretension_kN": [811.0, 1770.0, 5675.0], "link_diameter_mm": [68.0, 100.0, 178.0]}, index=["MS1", "MS3", "MS6"]
+        {"pretension_kN": [811.0, 1770.0, 5675.0], "link_diameter_mm": [68.0, 100.0, 178.0]},
+        index=["MS1", "MS3", "MS6"],
     )
     t = lifecycle.mean_stress_table(mooring)
-    expect = {"MS1": (111.6563, 0.8837, 0.8405, 0.9865), "MS3": (112.6817, 0.8826, 0.8390, 0.9862),
-              "MS6": (114.0265, 0.8812, 0.8371, 0.9859)}
+    expect = {
+        "MS1": (111.6563, 0.8837, 0.8405, 0.9865),
+        "MS3": (112.6817, 0.8826, 0.8390, 0.9862),
+        "MS6": (114.0265, 0.8812, 0.8371, 0.9859),
+    }
     for ms, (s, g, so, ge) in expect.items():
         r = t[(t.mooring_system == ms) & (t.block == "static")].iloc[0]
         assert round(r.mean_stress_mpa, 4) == s
@@ -199,8 +221,9 @@ def test_corrosion_evolution():
     np.testing.assert_allclose(out["corroded"][1], 0.1)
     np.testing.assert_allclose(out["corroded"][2] - out["corroded"][1], 0.1 * (0.079 / 0.078) ** 6)
     assert np.all(np.diff(out["factor"]) > 0)
-    none = lifecycle.corrosion_evolution(0.02, 0.079, 25.0, curve="tn",
-                                         settings=fatigue.fatigue_settings({"corrosion": {"rate": 0.0}}))
+    none = lifecycle.corrosion_evolution(
+        0.02, 0.079, 25.0, curve="tn", settings=fatigue.fatigue_settings({"corrosion": {"rate": 0.0}})
+    )
     np.testing.assert_allclose(none["corroded"], none["intact"])
 
 
@@ -258,33 +281,57 @@ def test_stores_comparison_and_sensitivity_end_to_end(tmp_path):
     write_zarr(hc, tmp_path / "hindcast.zarr")
     write_zarr(cases, tmp_path / "cases.zarr")
     systems = ["MS1", "MS2"]
-    pd.DataFrame({
-        "mooring_system": systems, "mass_kg_per_m": [92.0, 125.6], "pretension_kN": [811.0, 1112.0],
-        "link_diameter_mm": [68.0, 79.0], "equivalent_diameter_m": [0.1199, 0.1398], "EA_N": [5.43e8, 7.45e8],
-        "MBS_N": [5420364.0, 7200284.0], "chain": ["studless", "studless"],
-    }).to_csv(tmp_path / "ms.tsv", sep="\t", index=False)
+    pd.DataFrame(
+        {
+            "mooring_system": systems,
+            "mass_kg_per_m": [92.0, 125.6],
+            "pretension_kN": [811.0, 1112.0],
+            "link_diameter_mm": [68.0, 79.0],
+            "equivalent_diameter_m": [0.1199, 0.1398],
+            "EA_N": [5.43e8, 7.45e8],
+            "MBS_N": [5420364.0, 7200284.0],
+            "chain": ["studless", "studless"],
+        }
+    ).to_csv(tmp_path / "ms.tsv", sep="\t", index=False)
     write_zarr(xr.Dataset({"probability": ("bin", [0.4, 0.6])}, coords={"bin": [0, 1]}), tmp_path / "bins.zarr")
     cfg = {"rbf": {"shape": "fixed"}, "adaptive": {"n_suggest": 3}, "recommendation": {"curves": ["sn", "tn"]}}
     for k, ms in enumerate(systems):
         s = _sims(cases, damage=np.array([2e-6, 5e-6, 1e-6]) / 10 ** (2 * k))
         s["tension_mean"] = (("case", "line"), np.full((60, 3), 1e6 * (k + 1)))
         write_zarr(s, tmp_path / f"{ms}_sims.zarr")
-        d = xr.Dataset({v: (("bin", "line"), np.full((2, 3), 1e-6 / 10 ** (2 * k))) for v in ("damage_sn", "damage_tn")},
-                       coords={"bin": [0, 1], "line": LINES})
+        d = xr.Dataset(
+            {v: (("bin", "line"), np.full((2, 3), 1e-6 / 10 ** (2 * k))) for v in ("damage_sn", "damage_tn")},
+            coords={"bin": [0, 1], "line": LINES},
+        )
         write_zarr(d, tmp_path / f"{ms}_disc.zarr")
-        st_lifecycle.run(hindcast=tmp_path / "hindcast.zarr", cases=tmp_path / "cases.zarr",
-                         simulations=tmp_path / f"{ms}_sims.zarr", store=tmp_path / f"{ms}_lc.zarr", lifecycle=cfg,
-                         fatigue={}, threads=1)
+        st_lifecycle.run(
+            hindcast=tmp_path / "hindcast.zarr",
+            cases=tmp_path / "cases.zarr",
+            simulations=tmp_path / f"{ms}_sims.zarr",
+            store=tmp_path / f"{ms}_lc.zarr",
+            lifecycle=cfg,
+            fatigue={},
+            threads=1,
+        )
     lc = open_zarr(tmp_path / "MS1_lc.zarr")
     assert lc["damage_sn"].dims == ("time", "line") and lc.sizes["time"] == 1500
     np.testing.assert_allclose(lc["lifecycle_damage"].sel(curve="sn").values, np.array([2e-6, 5e-6, 1e-6]) * 1500)
-    st_lifecycle.figures(lifecycle=tmp_path / "MS1_lc.zarr", **{k: tmp_path / f"{k}.png" for k in (
-        "validation", "loo_map", "damage_metocean")}, ms="MS1")
+    st_lifecycle.figures(
+        lifecycle=tmp_path / "MS1_lc.zarr",
+        **{k: tmp_path / f"{k}.png" for k in ("validation", "loo_map", "damage_metocean")},
+        ms="MS1",
+    )
     lcs = [tmp_path / f"{ms}_lc.zarr" for ms in systems]
-    table = st_compare.run(lifecycles=lcs, discretes=[tmp_path / f"{ms}_disc.zarr" for ms in systems],
-                           bins=tmp_path / "bins.zarr", mooring_systems=tmp_path / "ms.tsv",
-                           summary=tmp_path / "summary.csv", recommendation=tmp_path / "rec.yaml",
-                           systems=systems, lifecycle=cfg)
+    table = st_compare.run(
+        lifecycles=lcs,
+        discretes=[tmp_path / f"{ms}_disc.zarr" for ms in systems],
+        bins=tmp_path / "bins.zarr",
+        mooring_systems=tmp_path / "ms.tsv",
+        summary=tmp_path / "summary.csv",
+        recommendation=tmp_path / "rec.yaml",
+        systems=systems,
+        lifecycle=cfg,
+    )
     csv = pd.read_csv(tmp_path / "summary.csv")
     assert len(csv) == len(table) == 12
     # MS1 damages 2e-6..5e-6 per hour -> ~0.04 per year x 25 y x DFF fails; MS2 is 100x lower and passes
@@ -293,29 +340,58 @@ def test_stores_comparison_and_sensitivity_end_to_end(tmp_path):
     r = csv[(csv.mooring_system == "MS1") & (csv.line == "M2") & (csv.curve == "sn")].iloc[0]
     assert r.difference_pct == pytest.approx(100 * (5e-6 - 1e-6) / 5e-6)
     # judged on the corroding chain, the verdict can only get stricter
-    corr = lifecycle.summary_table({ms: open_zarr(p) for ms, p in zip(systems, lcs)},
-                                   {ms: lifecycle.discrete_damage_table(open_zarr(tmp_path / "bins.zarr"),
-                                                                        open_zarr(tmp_path / f"{ms}_disc.zarr"), 1500)
-                                    for ms in systems},
-                                   pd.read_csv(tmp_path / "ms.tsv", sep="\t").set_index("mooring_system"),
-                                   corrosion=fatigue.fatigue_settings({}))
+    corr = lifecycle.summary_table(
+        {ms: open_zarr(p) for ms, p in zip(systems, lcs)},
+        {
+            ms: lifecycle.discrete_damage_table(
+                open_zarr(tmp_path / "bins.zarr"), open_zarr(tmp_path / f"{ms}_disc.zarr"), 1500
+            )
+            for ms in systems
+        },
+        pd.read_csv(tmp_path / "ms.tsv", sep="\t").set_index("mooring_system"),
+        corrosion=fatigue.fatigue_settings({}),
+    )
     assert np.all(corr["utilisation_corroded"] > corr["utilisation"])
     assert not np.any(corr["passes"] & ~table["passes"])
-    st_compare.figures(summary=tmp_path / "summary.csv", recommendation=tmp_path / "rec.yaml", lifecycles=lcs,
-                       **{k: tmp_path / f"{k}.png" for k in ("damage_mass", "difference", "offsets")},
-                       recommendation_fig=tmp_path / "recommendation.png", systems=systems)
-    seeds = xr.Dataset({v: (("case", "line"), np.full((4, 3), 1e-5) * np.array([[1], [1.1], [0.9], [1.2]]))
-                        for v in ("damage_sn", "damage_tn")}, coords={"case": np.arange(4) + 10**6, "line": LINES})
+    st_compare.figures(
+        summary=tmp_path / "summary.csv",
+        recommendation=tmp_path / "rec.yaml",
+        lifecycles=lcs,
+        **{k: tmp_path / f"{k}.png" for k in ("damage_mass", "difference", "offsets")},
+        recommendation_fig=tmp_path / "recommendation.png",
+        systems=systems,
+    )
+    seeds = xr.Dataset(
+        {
+            v: (("case", "line"), np.full((4, 3), 1e-5) * np.array([[1], [1.1], [0.9], [1.2]]))
+            for v in ("damage_sn", "damage_tn")
+        },
+        coords={"case": np.arange(4) + 10**6, "line": LINES},
+    )
     write_zarr(seeds, tmp_path / "seeds.zarr")
-    outs = {k: tmp_path / "sens" / f"{k}.{'csv' if k.endswith('csv') else 'png'}" for k in
-            ("seeds_csv", "seeds_fig", "corrosion_csv", "corrosion_fig", "mean_stress_csv", "mean_stress_fig")}
-    st_sensitivity.run(seeds=tmp_path / "seeds.zarr", lifecycle=lcs[1], lifecycles=lcs,
-                       mooring_systems=tmp_path / "ms.tsv", **outs, systems=systems, ms="MS2", line="M1", fatigue={})
+    outs = {
+        k: tmp_path / "sens" / f"{k}.{'csv' if k.endswith('csv') else 'png'}"
+        for k in ("seeds_csv", "seeds_fig", "corrosion_csv", "corrosion_fig", "mean_stress_csv", "mean_stress_fig")
+    }
+    st_sensitivity.run(
+        seeds=tmp_path / "seeds.zarr",
+        lifecycle=lcs[1],
+        lifecycles=lcs,
+        mooring_systems=tmp_path / "ms.tsv",
+        **outs,
+        systems=systems,
+        ms="MS2",
+        line="M1",
+        fatigue={},
+    )
     lives = pd.read_csv(outs["seeds_csv"])
-    assert lives[(lives.curve == "sn") & (lives.line == "M1")]["life_years"].max() == pytest.approx(1 / (0.9e-5 * 8766), rel=1e-5)
+    assert lives[(lives.curve == "sn") & (lives.line == "M1")]["life_years"].max() == pytest.approx(
+        1 / (0.9e-5 * 8766), rel=1e-5
+    )
     ms_tab = pd.read_csv(outs["mean_stress_csv"])
-    assert ms_tab[(ms_tab.block == "lifecycle mean") & (ms_tab.mooring_system == "MS2")]["mean_tension_kN"].iloc[0] \
-        == pytest.approx(2000.0)
+    assert ms_tab[(ms_tab.block == "lifecycle mean") & (ms_tab.mooring_system == "MS2")]["mean_tension_kN"].iloc[
+        0
+    ] == pytest.approx(2000.0)
     for p in [*outs.values(), *(tmp_path / f"{k}.png" for k in ("validation", "damage_mass", "recommendation"))]:
         assert p.stat().st_size > (200 if p.suffix == ".csv" else 5000), p
 
@@ -331,8 +407,11 @@ def test_selection_normalisation_is_used_in_any_attribute_order():
     settings = lifecycle.RBFSettings.from_config({"shape": "fixed", "outputs": ["surge_mpm"]})
     a = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=0)
     # the same space given in METOCEAN_VARS order gives identical numbers
-    cases.attrs.update(norm_variables=list(names.METOCEAN_VARS), norm_lo=[lo[v] for v in names.METOCEAN_VARS],
-                       norm_span=[span[v] for v in names.METOCEAN_VARS])
+    cases.attrs.update(
+        norm_variables=list(names.METOCEAN_VARS),
+        norm_lo=[lo[v] for v in names.METOCEAN_VARS],
+        norm_span=[span[v] for v in names.METOCEAN_VARS],
+    )
     b = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=0)
     np.testing.assert_array_equal(a["nearest_distance"].values, b["nearest_distance"].values)
     # and differs from the training-range normalisation

@@ -9,7 +9,6 @@ import pytest
 
 from moorlife.io import log_to
 
-
 # as Capytaine does in the BEM's spawned solver processes: its own logging handler on stdout
 CHILD = """
 import logging, sys

@@ -329,8 +329,14 @@ def test_build_hindcast_contract_roundtrip(config, tmp_path, caplog):
 def test_build_hindcast_file_source_dispatch(config, tmp_path):
     t = pd.date_range("2001-01-01", periods=48, freq="h")
     df = pd.DataFrame(
-        {"time": t.strftime("%Y-%m-%d %H:%M:%S"), "hs": 1.0 + 0.01 * np.arange(48), "tp": 9.0 + 0.01 * np.arange(48),
-         "mwd": 300.0, "u10": -5.0 - 0.01 * np.arange(48), "v10": 0.0}
+        {
+            "time": t.strftime("%Y-%m-%d %H:%M:%S"),
+            "hs": 1.0 + 0.01 * np.arange(48),
+            "tp": 9.0 + 0.01 * np.arange(48),
+            "mwd": 300.0,
+            "u10": -5.0 - 0.01 * np.arange(48),
+            "v10": 0.0,
+        }
     )  # varying Hs, Tp and wind speed: a constant coordinate is refused
     (tmp_path / "h.csv").write_text("#ERA5,LONGITUDE:-2.9,LATITUDE:43.6,\n" + df.to_csv(index=False))
     h = dict(config["hindcast"], source="file", path="h.csv", start="2001-01-01T06:00", end="2001-01-01T23:00")
@@ -348,7 +354,9 @@ def test_validate_hindcast_on_dataset_and_frame(config):
     np.testing.assert_array_equal(clean["hs"].to_numpy(), ds["hs"].values)
     bad = ds.copy(deep=True)
     bad["tp"][5] = -1.0
-    with pytest.raises(mo.HindcastError, match=r"mem: column 'tp', row 5 \(time 1990-01-01T05:00:00\): value -1 is not > 0"):
+    with pytest.raises(
+        mo.HindcastError, match=r"mem: column 'tp', row 5 \(time 1990-01-01T05:00:00\): value -1 is not > 0"
+    ):
         mo.validate_hindcast(bad, source="mem")
     frame = ds.to_dataframe().reset_index().drop(columns=["wind_dir"])
     with pytest.raises(mo.HindcastError, match=r"mem: missing column\(s\) for wind_dir"):
@@ -358,8 +366,13 @@ def test_validate_hindcast_on_dataset_and_frame(config):
 def test_hindcast_dataset_requires_waves():
     with pytest.raises(KeyError, match="tp"):
         mo.hindcast_dataset(
-            np.array(["2000-01-01"], dtype="datetime64[ns]"), {"hs": [1.0], "wave_dir": [1.0]},
-            source="x", site="s", lon=0.0, lat=0.0, hub_height=90.0,
+            np.array(["2000-01-01"], dtype="datetime64[ns]"),
+            {"hs": [1.0], "wave_dir": [1.0]},
+            source="x",
+            site="s",
+            lon=0.0,
+            lat=0.0,
+            hub_height=90.0,
         )
 
 

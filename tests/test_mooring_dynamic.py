@@ -26,8 +26,16 @@ MS2 = {
     "MBS_N": 7200284.0,
     "chain": "studless",
 }
-MS5 = dict(MS2, mooring_system="MS5", mass_kg_per_m=462.0, pretension_kN=4117.0, link_diameter_mm=152.0,
-           equivalent_diameter_m=0.2679, EA_N=2.62e9, MBS_N=22363193.0)
+MS5 = dict(
+    MS2,
+    mooring_system="MS5",
+    mass_kg_per_m=462.0,
+    pretension_kN=4117.0,
+    link_diameter_mm=152.0,
+    equivalent_diameter_m=0.2679,
+    EA_N=2.62e9,
+    MBS_N=22363193.0,
+)
 LAYOUT = lines.oc4_layout(None)
 
 
@@ -58,42 +66,46 @@ def _run_ours(props, cfg, t, batch=1):
 
 
 def _moordyn_deck(path, props, settings, dtm, fric_damp):
-    lt = (f"main {props.equivalent_diameter} {props.mass} {props.EA} -{settings.internal_damping_ratio} 0 "
-          f"{settings.cd_normal} {settings.ca_normal} {settings.cd_axial} {settings.ca_axial}")
+    lt = (
+        f"main {props.equivalent_diameter} {props.mass} {props.EA} -{settings.internal_damping_ratio} 0 "
+        f"{settings.cd_normal} {settings.ca_normal} {settings.cd_axial} {settings.ca_axial}"
+    )
     pts = [f"{k + 1} Fixed {a[0]:.9f} {a[1]:.9f} {a[2]:.9f} 0 0 0 0" for k, a in enumerate(LAYOUT.anchors)]
     pts += [f"{k + 4} Coupled {f[0]:.9f} {f[1]:.9f} {f[2]:.9f} 0 0 0 0" for k, f in enumerate(LAYOUT.fairleads_body)]
     lns = [f"{k + 1} main {k + 1} {k + 4} {LAYOUT.length} {settings.n_segments} -" for k in range(3)]
-    text = "\n".join([
-        "--------------------- MoorDyn Input File ---------------------",
-        "moorlife test deck (OC4 geometry, paper Table 4 chain)",
-        "----------------------- LINE TYPES ---------------------------",
-        "Name Diam MassDen EA BA/-zeta EI Cd Ca CdAx CaAx",
-        "(-) (m) (kg/m) (N) (N-s/-) () (-) (-) (-) (-)",
-        lt,
-        "---------------------- POINTS --------------------------------",
-        "Node Type X Y Z M V CdA CA",
-        "(-) (-) (m) (m) (m) (kg) (m^3) (m^2) (-)",
-        *pts,
-        "---------------------- LINES ---------------------------------",
-        "Line LineType AttachA AttachB UnstrLen NumSegs Outputs",
-        "(-) (-) (-) (-) (m) (-) (-)",
-        *lns,
-        "---------------------- OPTIONS -------------------------------",
-        f"{dtm} dtM",
-        f"{settings.seabed_stiffness} kbot",
-        f"{settings.seabed_damping} cbot",
-        f"{LAYOUT.depth} WtrDpth",
-        f"{settings.water_density} rho",
-        f"{settings.gravity} g",
-        "1.0 dtIC",
-        "60.0 TmaxIC",
-        "4.0 CdScaleIC",
-        "0.001 threshIC",
-        f"{settings.friction_coefficient} FrictionCoefficient",
-        f"{fric_damp} FricDamp",
-        "------------------------- need this line ----------------------",
-        "",
-    ])
+    text = "\n".join(
+        [
+            "--------------------- MoorDyn Input File ---------------------",
+            "moorlife test deck (OC4 geometry, paper Table 4 chain)",
+            "----------------------- LINE TYPES ---------------------------",
+            "Name Diam MassDen EA BA/-zeta EI Cd Ca CdAx CaAx",
+            "(-) (m) (kg/m) (N) (N-s/-) () (-) (-) (-) (-)",
+            lt,
+            "---------------------- POINTS --------------------------------",
+            "Node Type X Y Z M V CdA CA",
+            "(-) (-) (m) (m) (m) (kg) (m^3) (m^2) (-)",
+            *pts,
+            "---------------------- LINES ---------------------------------",
+            "Line LineType AttachA AttachB UnstrLen NumSegs Outputs",
+            "(-) (-) (-) (-) (m) (-) (-)",
+            *lns,
+            "---------------------- OPTIONS -------------------------------",
+            f"{dtm} dtM",
+            f"{settings.seabed_stiffness} kbot",
+            f"{settings.seabed_damping} cbot",
+            f"{LAYOUT.depth} WtrDpth",
+            f"{settings.water_density} rho",
+            f"{settings.gravity} g",
+            "1.0 dtIC",
+            "60.0 TmaxIC",
+            "4.0 CdScaleIC",
+            "0.001 threshIC",
+            f"{settings.friction_coefficient} FrictionCoefficient",
+            f"{fric_damp} FricDamp",
+            "------------------------- need this line ----------------------",
+            "",
+        ]
+    )
     path.write_text(text)
     return path
 

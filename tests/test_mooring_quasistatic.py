@@ -155,7 +155,12 @@ def test_force_table_interpolation_and_fallback():
     span = 796.732 + rng.uniform(-40, 40, 200)
     height = 186.0 + rng.uniform(-20, 20, 200)
     H, V = qs.table_lookup(tab, span, height)
-    exact = np.array([qs.catenary_solve(x, z, 835.5, p.EA, p.wet_weight, settings.friction_coefficient) for x, z in zip(span, height)])
+    exact = np.array(
+        [
+            qs.catenary_solve(x, z, 835.5, p.EA, p.wet_weight, settings.friction_coefficient)
+            for x, z in zip(span, height)
+        ]
+    )
     T = np.hypot(H, V)
     Te = np.hypot(exact[:, 0], exact[:, 1])
     assert np.max(np.abs(T / Te - 1)) < 2e-4
@@ -172,8 +177,19 @@ def _moorpy_system(p, friction):
     import moorpy as mp
 
     ms = mp.System(depth=200.0, rho=1025.0, g=9.80665)
-    ms.setLineType(lineType={"name": "chain", "m": p.mass, "w": p.wet_weight, "EA": p.EA, "d_vol": p.equivalent_diameter,
-                             "MBL": p.MBS, "material": "chain", "input_d": p.link_diameter}, name="chain")
+    ms.setLineType(
+        lineType={
+            "name": "chain",
+            "m": p.mass,
+            "w": p.wet_weight,
+            "EA": p.EA,
+            "d_vol": p.equivalent_diameter,
+            "MBL": p.MBS,
+            "material": "chain",
+            "input_d": p.link_diameter,
+        },
+        name="chain",
+    )
     ms.addBody(-1, [0, 0, 0, 0, 0, 0])
     for k in range(3):
         ms.addPoint(1, LAYOUT.anchors[k])

@@ -40,8 +40,9 @@ print(h.hexdigest())
 
 def _digest(cache: Path) -> str:
     env = {**os.environ, "NUMBA_CACHE_DIR": str(cache)}
-    run = subprocess.run([sys.executable, "-c", SCRIPT.format(tests=str(TESTS))], env=env, capture_output=True,
-                         text=True)
+    run = subprocess.run(
+        [sys.executable, "-c", SCRIPT.format(tests=str(TESTS))], env=env, capture_output=True, text=True
+    )
     assert run.returncode == 0, run.stderr[-3000:]
     return run.stdout.strip().splitlines()[-1]
 

@@ -11,8 +11,12 @@ import yaml
 
 ROOT = Path(__file__).resolve().parents[1]
 #: PyPI name -> conda-forge name where they differ
-CONDA_NAME = {"snakemake": "snakemake-minimal", "matplotlib": "matplotlib-base", "pyyaml": "pyyaml",
-              "netcdf4": "netcdf4"}
+CONDA_NAME = {
+    "snakemake": "snakemake-minimal",
+    "matplotlib": "matplotlib-base",
+    "pyyaml": "pyyaml",
+    "netcdf4": "netcdf4",
+}
 
 
 def _name(req: str) -> str:
@@ -34,8 +38,9 @@ def test_conda_env_mirrors_pyproject(project):
 
 
 def test_every_dependency_bounded_and_pinned(project):
-    pins = {_name(l): l.split("==")[1].strip() for l in (ROOT / "constraints.txt").read_text().splitlines()
-            if "==" in l}
+    pins = {
+        _name(l): l.split("==")[1].strip() for l in (ROOT / "constraints.txt").read_text().splitlines() if "==" in l
+    }
     extras = project["optional-dependencies"]
     for req in project["dependencies"] + extras["test"] + extras["cluster"]:
         assert "<" in req, f"{req}: upper bound missing"

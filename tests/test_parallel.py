@@ -60,8 +60,9 @@ def test_batch_slices_cover_all():
 
 def test_store_is_complete_and_carries_cases(tmp_path, cases, client):
     out = tmp_path / "results" / "MS1" / "sim.zarr"
-    ds = map_cases(noisy_case, cases, out, dim="case", func_kwargs={"scale": 2.0},
-                            batch_size=5, fingerprint="fp1", client=client)
+    ds = map_cases(
+        noisy_case, cases, out, dim="case", func_kwargs={"scale": 2.0}, batch_size=5, fingerprint="fp1", client=client
+    )
     assert out.exists() and not mio.partial_path(out).exists()
     back = mio.open_zarr(out)
     assert back.attrs[mio.COMPLETE_ATTR] is True
@@ -79,8 +80,16 @@ def test_identical_whatever_workers_and_batches(tmp_path, cases):
     runs = []
     for threads, bs in [(1, 23), (2, 4), (2, 1)]:
         out = tmp_path / f"w{threads}b{bs}" / "results" / "sim.zarr"
-        map_cases(noisy_case, cases, out, dim="case", func_kwargs={"scale": 1.5},
-                           batch_size=bs, fingerprint="fp", threads=threads)
+        map_cases(
+            noisy_case,
+            cases,
+            out,
+            dim="case",
+            func_kwargs={"scale": 1.5},
+            batch_size=bs,
+            fingerprint="fp",
+            threads=threads,
+        )
         runs.append(mio.open_zarr(out))
     for other in runs[1:]:
         xr.testing.assert_identical(runs[0].drop_attrs(), other.drop_attrs())
@@ -91,25 +100,40 @@ def test_resume_computes_only_missing(tmp_path, cases, client):
     rec = tmp_path / "rec"
     rec.mkdir()
     with pytest.raises(RuntimeError, match="planted failure on case 12"):
-        map_cases(noisy_case, cases, out, dim="case",
-                           func_kwargs={"scale": 3.0, "record_dir": str(rec), "fail_on": 12},
-                           batch_size=5, fingerprint="fpR", client=client)
+        map_cases(
+            noisy_case,
+            cases,
+            out,
+            dim="case",
+            func_kwargs={"scale": 3.0, "record_dir": str(rec), "fail_on": 12},
+            batch_size=5,
+            fingerprint="fpR",
+            client=client,
+        )
     assert not out.exists(), "a failed run must not leave the declared output"
     part = mio.partial_path(out)
     assert part.exists()
     first = set(computed(rec))
     for p in rec.iterdir():
         p.unlink()
-    map_cases(noisy_case, cases, out, dim="case",
-                       func_kwargs={"scale": 3.0, "record_dir": str(rec)},
-                       batch_size=5, fingerprint="fpR", client=client)
+    map_cases(
+        noisy_case,
+        cases,
+        out,
+        dim="case",
+        func_kwargs={"scale": 3.0, "record_dir": str(rec)},
+        batch_size=5,
+        fingerprint="fpR",
+        client=client,
+    )
     second = set(computed(rec))
     assert 12 in second and 10 in second  # the failed batch (10-14) is redone
     done_before = first - {10, 11, 12, 13, 14}
     assert not (second & done_before), "finished batches must be reused, not recomputed"
     fresh = tmp_path / "fresh" / "results" / "sim.zarr"
-    map_cases(noisy_case, cases, fresh, dim="case", func_kwargs={"scale": 3.0},
-                       batch_size=5, fingerprint="x", client=client)
+    map_cases(
+        noisy_case, cases, fresh, dim="case", func_kwargs={"scale": 3.0}, batch_size=5, fingerprint="x", client=client
+    )
     xr.testing.assert_identical(mio.open_zarr(out).drop_attrs(), mio.open_zarr(fresh).drop_attrs())
 
 
@@ -118,14 +142,28 @@ def test_changed_fingerprint_starts_afresh(tmp_path, cases, client):
     rec = tmp_path / "rec"
     rec.mkdir()
     with pytest.raises(RuntimeError):
-        map_cases(noisy_case, cases, out, dim="case",
-                           func_kwargs={"scale": 1.0, "record_dir": str(rec), "fail_on": 22},
-                           batch_size=5, fingerprint="old", client=client)
+        map_cases(
+            noisy_case,
+            cases,
+            out,
+            dim="case",
+            func_kwargs={"scale": 1.0, "record_dir": str(rec), "fail_on": 22},
+            batch_size=5,
+            fingerprint="old",
+            client=client,
+        )
     for p in rec.iterdir():
         p.unlink()
-    map_cases(noisy_case, cases, out, dim="case",
-                       func_kwargs={"scale": 2.0, "record_dir": str(rec)},
-                       batch_size=5, fingerprint="new", client=client)
+    map_cases(
+        noisy_case,
+        cases,
+        out,
+        dim="case",
+        func_kwargs={"scale": 2.0, "record_dir": str(rec)},
+        batch_size=5,
+        fingerprint="new",
+        client=client,
+    )
     assert computed(rec) == list(range(23))
     np.testing.assert_array_equal(
         mio.open_zarr(out)["surge_mpm"].values,
@@ -138,8 +176,9 @@ def test_corrupted_partial_is_not_trusted(tmp_path, cases, client):
     part = mio.partial_path(out)
     part.mkdir(parents=True)
     (part / "zarr.json").write_text("{ this is not json")
-    ds = map_cases(noisy_case, cases, out, dim="case", func_kwargs={"scale": 1.0},
-                            batch_size=7, fingerprint="fpC", client=client)
+    ds = map_cases(
+        noisy_case, cases, out, dim="case", func_kwargs={"scale": 1.0}, batch_size=7, fingerprint="fpC", client=client
+    )
     assert ds.sizes["case"] == 23 and np.isfinite(ds["surge_mpm"]).all()
 
 
@@ -185,16 +224,33 @@ def test_resume_with_another_batch_size_reuses_every_finished_batch(tmp_path, ca
     rec = tmp_path / "rec"
     rec.mkdir()
     with pytest.raises(RuntimeError, match="planted failure on case 12"):
-        map_cases(noisy_case, cases, out, dim="case", func_kwargs={"scale": 3.0, "record_dir": str(rec), "fail_on": 12},
-                  batch_size=5, fingerprint="fpB", client=client)
+        map_cases(
+            noisy_case,
+            cases,
+            out,
+            dim="case",
+            func_kwargs={"scale": 3.0, "record_dir": str(rec), "fail_on": 12},
+            batch_size=5,
+            fingerprint="fpB",
+            client=client,
+        )
     for p in rec.iterdir():
         p.unlink()
-    map_cases(noisy_case, cases, out, dim="case", func_kwargs={"scale": 3.0, "record_dir": str(rec)},
-              batch_size=3, fingerprint="fpB", client=client)
+    map_cases(
+        noisy_case,
+        cases,
+        out,
+        dim="case",
+        func_kwargs={"scale": 3.0, "record_dir": str(rec)},
+        batch_size=3,
+        fingerprint="fpB",
+        client=client,
+    )
     assert computed(rec) == [10, 11, 12, 13, 14], "only the failed batch of the stored batch size is redone"
     fresh = tmp_path / "fresh" / "results" / "sim.zarr"
-    map_cases(noisy_case, cases, fresh, dim="case", func_kwargs={"scale": 3.0}, batch_size=7, fingerprint="y",
-              client=client)
+    map_cases(
+        noisy_case, cases, fresh, dim="case", func_kwargs={"scale": 3.0}, batch_size=7, fingerprint="y", client=client
+    )
     xr.testing.assert_identical(mio.open_zarr(out).drop_attrs(), mio.open_zarr(fresh).drop_attrs())
 
 
@@ -226,8 +282,18 @@ def test_store_fingerprint_ignores_scheduling_settings(cases):
     from moorlife.stages.simulate import store_fingerprint
 
     platform = xr.Dataset({"mass": ("dof", np.arange(6.0))})
-    base = dict(dim="case", ms="MS1", row={"mooring_system": "MS1", "EA_N": 1.0}, seed=3, mooring={}, fatigue={},
-                statistics={}, platform_cfg={"a": 1}, cases=cases, platform=platform)
+    base = dict(
+        dim="case",
+        ms="MS1",
+        row={"mooring_system": "MS1", "EA_N": 1.0},
+        seed=3,
+        mooring={},
+        fatigue={},
+        statistics={},
+        platform_cfg={"a": 1},
+        cases=cases,
+        platform=platform,
+    )
     fp = store_fingerprint(simulation={"dt": 0.1, "batch_size": 8}, **base)
     assert fp == store_fingerprint(simulation={"dt": 0.1, "batch_size": 2}, **base)
     assert fp == store_fingerprint(simulation={"dt": 0.1}, **base)

@@ -76,8 +76,10 @@ def test_agrees_with_scipy_rbfinterpolator(q):
     ref = RBFInterpolator(x, y, kernel="gaussian", epsilon=1.0 / q, degree=1)(xq)
     np.testing.assert_allclose(ours, ref, rtol=0, atol=1e-9 * np.abs(ref).max())
     # and the comparison is sensitive: another shape parameter gives other numbers
-    assert not np.allclose(ours, rbf.predict_rbf(rbf.fit_rbf(x, y, is_direction=[False] * 4, shape=2 * q,
-                                                             lo=np.zeros(4), span=np.ones(4)), xq))
+    assert not np.allclose(
+        ours,
+        rbf.predict_rbf(rbf.fit_rbf(x, y, is_direction=[False] * 4, shape=2 * q, lo=np.zeros(4), span=np.ones(4)), xq),
+    )
 
 
 def test_rippa_closed_form_equals_brute_force_leave_one_out():
@@ -180,8 +182,9 @@ def test_distance_is_the_selection_metric():
     lo, span = selection.scaling_from(x, DIRS5)
     zs = selection.normalise(x, DIRS5, lo, span)
     np.testing.assert_array_equal(z, zs)
-    np.testing.assert_allclose(np.sqrt(rbf.squared_distances(z, z, DIRS5)), selection.pairwise_distance(zs, zs, DIRS5),
-                               atol=1e-14)
+    np.testing.assert_allclose(
+        np.sqrt(rbf.squared_distances(z, z, DIRS5)), selection.pairwise_distance(zs, zs, DIRS5), atol=1e-14
+    )
     # 350 deg and 10 deg are 20 deg apart on the circle: 20 / 180 in normalised units
     a = rbf.normalise(np.array([[0, 350.0, 1, 5, 0]]), space)
     b = rbf.normalise(np.array([[0, 10.0, 1, 5, 0]]), space)

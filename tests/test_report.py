@@ -13,19 +13,34 @@ def _table() -> pd.DataFrame:
     rows = []
     for ms, mass, util in (("MS1", 92.0, 3.2), ("MS3", 200.0, 0.62)):
         for curve in ("sn", "tn"):
-            rows.append({"mooring_system": ms, "line": "M1", "curve": curve, "mass_kg_per_m": mass,
-                         "lifecycle_damage": 0.0123 * util, "damage_per_year": 0.0123 * util,
-                         "discrete_damage": 0.0150 * util, "difference_pct": -21.96,
-                         "fatigue_life_years": 81.3 / util, "fatigue_life_low": 20.0 / util,
-                         "fatigue_life_high": float("inf"), "design_fatigue_factor": 5.0,
-                         "utilisation": util, "passes": util <= 1.0})
+            rows.append(
+                {
+                    "mooring_system": ms,
+                    "line": "M1",
+                    "curve": curve,
+                    "mass_kg_per_m": mass,
+                    "lifecycle_damage": 0.0123 * util,
+                    "damage_per_year": 0.0123 * util,
+                    "discrete_damage": 0.0150 * util,
+                    "difference_pct": -21.96,
+                    "fatigue_life_years": 81.3 / util,
+                    "fatigue_life_low": 20.0 / util,
+                    "fatigue_life_high": float("inf"),
+                    "design_fatigue_factor": 5.0,
+                    "utilisation": util,
+                    "passes": util <= 1.0,
+                }
+            )
     return pd.DataFrame(rows)
 
 
-REC = {"recommended": "MS3", "curves": ["sn", "tn"],
-       "rule": "lightest system with DFF x design-life damage <= 1 on every line for curves ['sn', 'tn']",
-       "max_utilisation": {"MS1": 3.2, "MS3": 0.62},
-       "mean_difference_pct": {"sn/M1": -21.96, "tn/M1": -21.96}}
+REC = {
+    "recommended": "MS3",
+    "curves": ["sn", "tn"],
+    "rule": "lightest system with DFF x design-life damage <= 1 on every line for curves ['sn', 'tn']",
+    "max_utilisation": {"MS1": 3.2, "MS3": 0.62},
+    "mean_difference_pct": {"sn/M1": -21.96, "tn/M1": -21.96},
+}
 
 
 def _html(rst: str) -> str:
@@ -66,11 +81,17 @@ def test_report_descriptions_render(name, tmp_path, monkeypatch):
     import jinja2
 
     text = (Path(__file__).resolve().parents[1] / "workflow" / "report" / name).read_text()
-    cfg = {"lifecycle": {"recommendation": {"curves": ["sn", "tn"]}}, "fatigue": {"design_life": 25.0},
-           "hindcast": {"start": "1985", "end": "2015"}, "selection": {"n_train": 1000}}
+    cfg = {
+        "lifecycle": {"recommendation": {"curves": ["sn", "tn"]}},
+        "fatigue": {"design_life": 25.0},
+        "hindcast": {"start": "1985", "end": "2015"},
+        "selection": {"n_train": 1000},
+    }
     env = jinja2.Environment(undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True)
     rendered = env.from_string(text).render(snakemake=type("S", (), {"config": cfg}), categories={}, files=[])
-    rendered += "\n\n.. _Workflow: javascript:show_panel('workflow')\n.. _Statistics: javascript:show_panel('statistics')\n"
+    rendered += (
+        "\n\n.. _Workflow: javascript:show_panel('workflow')\n.. _Statistics: javascript:show_panel('statistics')\n"
+    )
     (tmp_path / "results" / "report").mkdir(parents=True)
     (tmp_path / "results" / "report" / "overview.rst").write_text(overview_rst(_table(), REC))
     monkeypatch.chdir(tmp_path)  # Snakemake renders in the working directory: the include is relative

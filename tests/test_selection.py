@@ -118,9 +118,7 @@ def test_fast_mda_equals_bruteforce_on_random_data(dtype, seed):
 
 @settings(max_examples=60, deadline=None)
 @given(
-    data=st.lists(
-        st.tuples(*(st.integers(0, 4) for _ in range(5))), min_size=1, max_size=40
-    ),
+    data=st.lists(st.tuples(*(st.integers(0, 4) for _ in range(5))), min_size=1, max_size=40),
     frac=st.floats(0.0, 1.0),
     dtype=st.sampled_from([np.float32, np.float64]),
 )
@@ -432,11 +430,15 @@ def test_workflow_scripts_write_contract_stores(tmp_path):
     write_zarr(hc, tmp_path / "hindcast.zarr")
     src = [str(tmp_path / "hindcast.zarr")]
     params = NS(n_train=20, n_validate=5, rule="mda", seed=3)
-    _run_script("selection", NS(input=src, output=[str(tmp_path / "cases.zarr")], params=params,
-                                log=[str(tmp_path / "selection.log")]))
+    _run_script(
+        "selection",
+        NS(input=src, output=[str(tmp_path / "cases.zarr")], params=params, log=[str(tmp_path / "selection.log")]),
+    )
     params = NS(hs_edges=[0.0, 1.5, 3.0], wind_edges=[0.0, 7.0, 14.0], tp_edges=[0.0, 6.0, 9.0, 12.0], sector=15.0)
-    _run_script("discrete", NS(input=src, output=[str(tmp_path / "discrete.zarr")], params=params,
-                               log=[str(tmp_path / "discrete.log")]))
+    _run_script(
+        "discrete",
+        NS(input=src, output=[str(tmp_path / "discrete.zarr")], params=params, log=[str(tmp_path / "discrete.log")]),
+    )
     cases, disc = open_zarr(tmp_path / "cases.zarr"), open_zarr(tmp_path / "discrete.zarr")
     assert cases.sizes[names.CASE] == 25 and cases.attrs["validation_rule"] == "mda"
     assert disc.attrs["direction_sector"] == 15.0 and float(disc["probability"].sum()) == pytest.approx(1.0)
@@ -446,8 +448,14 @@ def test_workflow_scripts_write_contract_stores(tmp_path):
     bad["tp"][3] = np.nan
     write_zarr(bad, tmp_path / "bad.zarr")
     with pytest.raises(ValueError, match=r"bad\.zarr: variable 'tp' row 3"):
-        _run_script("selection", NS(input=[str(tmp_path / "bad.zarr")], output=[str(tmp_path / "x.zarr")],
-                                    params=NS(n_train=5, n_validate=2, rule="random", seed=0),
-                                    log=[str(tmp_path / "bad.log")]))
+        _run_script(
+            "selection",
+            NS(
+                input=[str(tmp_path / "bad.zarr")],
+                output=[str(tmp_path / "x.zarr")],
+                params=NS(n_train=5, n_validate=2, rule="random", seed=0),
+                log=[str(tmp_path / "bad.log")],
+            ),
+        )
     assert "variable 'tp' row 3" in (tmp_path / "bad.log").read_text()
     assert not (tmp_path / "x.zarr").exists()

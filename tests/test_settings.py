@@ -38,20 +38,39 @@ RECORDS = [
 
 #: Where a field of a record is not the schema key of the same name: field -> path in the section.
 RENAMED = {
-    "HydroSettings": {"omega_min": "omega.min", "omega_max": "omega.max", "omega_n": "omega.n",
-                      "mesh_resolution": "mesh.resolution", "panel_size": "mesh.panel_size",
-                      "around_refinement": "mesh.around_refinement", "richardson": "mesh.richardson",
-                      "rotational_symmetry": "mesh.rotational_symmetry"},
-    "FatigueSettings": {"corrosion_rate": "corrosion.rate", "corrosion_step": "corrosion.step",
-                        "mean_stress": "mean_stress.method", "ultimate": "mean_stress.ultimate",
-                        "yield_": "mean_stress.yield", "dnv_base": "design_factor.dnv.base",
-                        "dnv_threshold": "design_factor.dnv.threshold",
-                        "dnv_increment": "design_factor.dnv.increment", "dnv_span": "design_factor.dnv.span",
-                        "api_factor": "design_factor.api", "rule_sn": "design_factor.sn",
-                        "rule_tn": "design_factor.tn"},
-    "RBFSettings": {"shape_mode": "shape", "fixed_damage": "fixed.damage", "fixed_tension": "fixed.tension",
-                    "fixed_other": "fixed.other", "grid_min": "grid.min", "grid_max": "grid.max",
-                    "grid_n": "grid.n"},
+    "HydroSettings": {
+        "omega_min": "omega.min",
+        "omega_max": "omega.max",
+        "omega_n": "omega.n",
+        "mesh_resolution": "mesh.resolution",
+        "panel_size": "mesh.panel_size",
+        "around_refinement": "mesh.around_refinement",
+        "richardson": "mesh.richardson",
+        "rotational_symmetry": "mesh.rotational_symmetry",
+    },
+    "FatigueSettings": {
+        "corrosion_rate": "corrosion.rate",
+        "corrosion_step": "corrosion.step",
+        "mean_stress": "mean_stress.method",
+        "ultimate": "mean_stress.ultimate",
+        "yield_": "mean_stress.yield",
+        "dnv_base": "design_factor.dnv.base",
+        "dnv_threshold": "design_factor.dnv.threshold",
+        "dnv_increment": "design_factor.dnv.increment",
+        "dnv_span": "design_factor.dnv.span",
+        "api_factor": "design_factor.api",
+        "rule_sn": "design_factor.sn",
+        "rule_tn": "design_factor.tn",
+    },
+    "RBFSettings": {
+        "shape_mode": "shape",
+        "fixed_damage": "fixed.damage",
+        "fixed_tension": "fixed.tension",
+        "fixed_other": "fixed.other",
+        "grid_min": "grid.min",
+        "grid_max": "grid.max",
+        "grid_n": "grid.n",
+    },
 }
 
 #: Unit conversions from the config value to the field: field -> factor.
@@ -90,15 +109,23 @@ def test_records_build_from_empty_to_the_schema_defaults(cls, section):
             expected = [expected] if not isinstance(expected, list) else expected
         expected = expected * SCALED.get((cls.__name__, f.name), 1) if isinstance(expected, float) else expected
         got = _plain(getattr(rec, f.name))
-        assert got == expected and type(got) is type(expected) or (
-            isinstance(expected, int) and type(got) is float and got == expected
+        assert (
+            got == expected
+            and type(got) is type(expected)
+            or (isinstance(expected, int) and type(got) is float and got == expected)
         ), f"{cls.__name__}.{f.name} = {got!r}, schema {section}.{key} = {expected!r}"
 
 
 #: Keys of a record's section read by another builder: record -> keys (and by whom).
 ELSEWHERE = {
-    "MooringSettings": {"water_depth", "line_length", "fairlead_radius", "fairlead_depth", "anchor_radius",
-                        "line_bearings"},  # the geometry, read by mooring.oc4_layout into a Layout
+    "MooringSettings": {
+        "water_depth",
+        "line_length",
+        "fairlead_radius",
+        "fairlead_depth",
+        "anchor_radius",
+        "line_bearings",
+    },  # the geometry, read by mooring.oc4_layout into a Layout
 }
 
 
@@ -197,15 +224,20 @@ def test_no_schema_default_repeated_in_the_code():
         rel = py.relative_to(SRC).as_posix()
         if any(rel == f or (f.endswith("/") and rel.startswith(f)) for f in ALLOWED_FILES):
             continue
-        found += [f"{rel}:{line} .get({key!r}, <literal>)" for line, key in _schema_default_reads(py, keys)
-                  if (rel, key) not in ALLOWED_READS]
+        found += [
+            f"{rel}:{line} .get({key!r}, <literal>)"
+            for line, key in _schema_default_reads(py, keys)
+            if (rel, key) not in ALLOWED_READS
+        ]
     assert not found, "schema defaults repeated (use the typed settings):\n" + "\n".join(found)
 
 
 def test_the_guard_catches_a_repeated_default(tmp_path):
     p = tmp_path / "m.py"
-    p.write_text('def f(cfg, ds):\n    a = cfg.get("dt", 0.1)\n    b = ds.attrs.get("dt", 0.1)\n'
-                 '    c = cfg.get("extra_damping", [0.0] * 6)\n    return cfg.get("dt", a)\n')
+    p.write_text(
+        'def f(cfg, ds):\n    a = cfg.get("dt", 0.1)\n    b = ds.attrs.get("dt", 0.1)\n'
+        '    c = cfg.get("extra_damping", [0.0] * 6)\n    return cfg.get("dt", a)\n'
+    )
     assert _schema_default_reads(p, settings.schema_leaf_names()) == [(2, "dt"), (4, "extra_damping")]
 
 

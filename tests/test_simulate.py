@@ -27,7 +27,7 @@ def synthetic_model(*, radiation=True, strips=False, thrust=False, kind="linear"
     om = np.linspace(0.02, 3.0, 150)
     hd = np.deg2rad(np.arange(-180.0, 180.0, 30.0))
     # excitation: surge/sway by heading, heave isotropic, pitch/roll coupled to surge/sway
-    amp = 2.0e6 * np.exp(-((om - 0.6) / 0.5) ** 2)
+    amp = 2.0e6 * np.exp(-(((om - 0.6) / 0.5) ** 2))
     exc = np.zeros((om.size, hd.size, 6), dtype=complex)
     exc[:, :, 0] = amp[:, None] * np.cos(hd)[None, :] * np.exp(1j * 0.3)
     exc[:, :, 1] = amp[:, None] * np.sin(hd)[None, :] * np.exp(1j * 0.3)
@@ -35,22 +35,35 @@ def synthetic_model(*, radiation=True, strips=False, thrust=False, kind="linear"
     exc[:, :, 4] = 2.0e7 * amp[:, None] / 2.0e6 * np.cos(hd)[None, :]
     drift = np.zeros((om.size, hd.size, 6))
     drift[:, :, 0] = 2.0e4 * om[:, None] ** 2 * np.cos(hd)[None, :]
-    kw = dict(mass=M6, stiffness=K6, omega=om, headings=hd, excitation=exc, drift=drift,
-              mooring_kind=kind, mooring_stiffness=KM, fairleads=np.array(
-                  [[20.434, 35.393, -14.0], [-40.868, 0.0, -14.0], [20.434, -35.393, -14.0]]))
+    kw = dict(
+        mass=M6,
+        stiffness=K6,
+        omega=om,
+        headings=hd,
+        excitation=exc,
+        drift=drift,
+        mooring_kind=kind,
+        mooring_stiffness=KM,
+        fairleads=np.array([[20.434, 35.393, -14.0], [-40.868, 0.0, -14.0], [20.434, -35.393, -14.0]]),
+    )
     alpha = np.array([0.5, 0.5, 1.0, 0.8, 0.8, 0.5])
     beta = np.array([2.0e5, 2.0e5, 1.0e6, 3.0e8, 3.0e8, 1.0e8])
     if radiation and kernel:  # the same memory as a kernel K(t) = beta exp(-alpha t)
         t = np.arange(0.0, 40.0 + 1e-9, 0.05)
-        kw.update(kernel=beta[None, :] * np.exp(-alpha[None, :] * t[:, None]),
-                  kernel_pairs=np.stack([np.arange(6), np.arange(6)], axis=1), kernel_dt=0.05)
+        kw.update(
+            kernel=beta[None, :] * np.exp(-alpha[None, :] * t[:, None]),
+            kernel_pairs=np.stack([np.arange(6), np.arange(6)], axis=1),
+            kernel_dt=0.05,
+        )
     elif radiation:
         kw.update(rad_a=np.diag(-alpha), rad_b=np.diag(beta), rad_c=np.eye(6))
     if strips:
-        kw.update(strip_pos=np.array([[0.0, 0.0, -10.0], [-28.87, 0.0, -20.0]]),
-                  strip_axis=np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]]),
-                  strip_cdn=np.array([0.5 * 1025 * 0.6 * 6.5 * 20.0, 0.0]),
-                  strip_cda=np.array([0.0, 0.5 * 1025 * 9.6 * math.pi * 24**2 / 4]))
+        kw.update(
+            strip_pos=np.array([[0.0, 0.0, -10.0], [-28.87, 0.0, -20.0]]),
+            strip_axis=np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]]),
+            strip_cdn=np.array([0.5 * 1025 * 0.6 * 6.5 * 20.0, 0.0]),
+            strip_cda=np.array([0.0, 0.5 * 1025 * 9.6 * math.pi * 24**2 / 4]),
+        )
     if thrust:
         v = np.linspace(-30.0, 60.0, 901)
         kw.update(thrust_speed=v, thrust_force=0.5 * 1.225 * math.pi * 63**2 * 0.8 * v * np.abs(v))
@@ -60,10 +73,17 @@ def synthetic_model(*, radiation=True, strips=False, thrust=False, kind="linear"
 def quiet_forcing(model, grid, nb=1, wind=0.0, wind_dir=270.0):
     n1 = grid.n_steps + 1
     ns = model.strip_pos.shape[0]
-    return sim.Forcing(grid=grid, force=np.zeros((nb, n1, 6)), wind=np.full((nb, n1), wind),
-                       wind_dir=np.tile(np.atleast_2d(
-                           np.array([math.cos(math.radians(270 - wind_dir)), math.sin(math.radians(270 - wind_dir))])),
-                           (nb, 1)), kin_every=1, kinematics=np.zeros((nb, grid.n_steps + 2, 3, ns), np.float32))
+    return sim.Forcing(
+        grid=grid,
+        force=np.zeros((nb, n1, 6)),
+        wind=np.full((nb, n1), wind),
+        wind_dir=np.tile(
+            np.atleast_2d(np.array([math.cos(math.radians(270 - wind_dir)), math.sin(math.radians(270 - wind_dir))])),
+            (nb, 1),
+        ),
+        kin_every=1,
+        kinematics=np.zeros((nb, grid.n_steps + 2, 3, ns), np.float32),
+    )
 
 
 def zero_crossing_period(y, dt, cycles=3):
@@ -113,10 +133,12 @@ def test_regular_wave_matches_frequency_domain_rao(kernel):
     w = k * grid.d_omega
     theta = math.radians(-30.0)
     a = 0.5  # m
-    waves = env.WaveComponents(index=np.array([k]), omega=np.array([w]), amplitude=np.array([[a + 0j]]),
-                               theta=np.array([theta]))
-    f = sim.build_forcing(m, grid, waves, np.zeros((1, grid.n_steps + 1)), np.array([270.0]), kin_every=1,
-                          second_order=False)
+    waves = env.WaveComponents(
+        index=np.array([k]), omega=np.array([w]), amplitude=np.array([[a + 0j]]), theta=np.array([theta])
+    )
+    f = sim.build_forcing(
+        m, grid, waves, np.zeros((1, grid.n_steps + 1)), np.array([270.0]), kin_every=1, second_order=False
+    )
     rec = sim.integrate(m, f, transient=300.0)
     rao = sim.frequency_response(m, [w], theta)[0]
     t = (np.arange(rec.motion.shape[-1]) + grid.n_steps - rec.motion.shape[-1]) * grid.dt
@@ -146,8 +168,9 @@ def test_newman_mean_drift_force():
     grid = env.record_grid(1800.0, 0.0, 0.2)
     ph, _ = env.case_streams(1, "MS1", [0], grid.n_fft // 2 + 1)
     waves = env.wave_components(grid, [3.0], [10.0], [270.0], [3.3], ph, omega_min=0.05, omega_max=3.0)
-    f1 = sim.build_forcing(m, grid, waves, np.zeros((1, grid.n_steps + 1)), np.array([270.0]), kin_every=5,
-                           second_order=False)
+    f1 = sim.build_forcing(
+        m, grid, waves, np.zeros((1, grid.n_steps + 1)), np.array([270.0]), kin_every=5, second_order=False
+    )
     f2 = sim.build_forcing(m, grid, waves, np.zeros((1, grid.n_steps + 1)), np.array([270.0]), kin_every=5)
     drift = f2.force[0, :, 0] - f1.force[0, :, 0]
     d = 2.0e4 * waves.omega**2  # cos(0) = 1: waves from the west travel along +x
@@ -176,26 +199,69 @@ def test_bad_cases_are_rejected():
     cases = {k: np.array([1.0]) for k in ("wind_speed", "wind_dir", "hs", "tp", "wave_dir")}
     cases["tp"] = np.array([-3.0])
     with pytest.raises(ValueError, match=r"case 7: tp = -3.0"):
-        sim.simulate_batch(cases, case_ids=np.array([7]), mooring_system="MS1", seed=1, model_inputs=m,
-                           sim_cfg={"duration": 60.0, "transient": 0.0}, fatigue_cfg=None, stats_cfg=None)
+        sim.simulate_batch(
+            cases,
+            case_ids=np.array([7]),
+            mooring_system="MS1",
+            seed=1,
+            model_inputs=m,
+            sim_cfg={"duration": 60.0, "transient": 0.0},
+            fatigue_cfg=None,
+            stats_cfg=None,
+        )
     del cases["hs"]
     with pytest.raises(ValueError, match="missing"):
-        sim.simulate_batch(cases, case_ids=np.array([7]), mooring_system="MS1", seed=1, model_inputs=m,
-                           sim_cfg={}, fatigue_cfg=None, stats_cfg=None)
+        sim.simulate_batch(
+            cases,
+            case_ids=np.array([7]),
+            mooring_system="MS1",
+            seed=1,
+            model_inputs=m,
+            sim_cfg={},
+            fatigue_cfg=None,
+            stats_cfg=None,
+        )
 
 
 # paper Table 4 (copied from config/mooring_systems.tsv)
 ROWS = {
-    "MS1": dict(mass_kg_per_m=92, pretension_kN=811, link_diameter_mm=68, equivalent_diameter_m=0.1199,
-                EA_N=5.43e8, MBS_N=5420364, chain="studless"),
-    "MS3": dict(mass_kg_per_m=200, pretension_kN=1770, link_diameter_mm=100, equivalent_diameter_m=0.1763,
-                EA_N=1.16e9, MBS_N=10944000, chain="studless"),
-    "MS6": dict(mass_kg_per_m=634, pretension_kN=5675, link_diameter_mm=178, equivalent_diameter_m=0.3138,
-                EA_N=3.55e9, MBS_N=28664642, chain="studless"),
+    "MS1": dict(
+        mass_kg_per_m=92,
+        pretension_kN=811,
+        link_diameter_mm=68,
+        equivalent_diameter_m=0.1199,
+        EA_N=5.43e8,
+        MBS_N=5420364,
+        chain="studless",
+    ),
+    "MS3": dict(
+        mass_kg_per_m=200,
+        pretension_kN=1770,
+        link_diameter_mm=100,
+        equivalent_diameter_m=0.1763,
+        EA_N=1.16e9,
+        MBS_N=10944000,
+        chain="studless",
+    ),
+    "MS6": dict(
+        mass_kg_per_m=634,
+        pretension_kN=5675,
+        link_diameter_mm=178,
+        equivalent_diameter_m=0.3138,
+        EA_N=3.55e9,
+        MBS_N=28664642,
+        chain="studless",
+    ),
 }
 QS = {"model": "quasistatic"}
-SIM = {"duration": 240.0, "transient": 60.0, "dt": 0.1, "gamma": "dnv", "kinematics_dt": 0.5,
-       "wind": {"spectrum": "npd", "f_max": 0.5}}
+SIM = {
+    "duration": 240.0,
+    "transient": 60.0,
+    "dt": 0.1,
+    "gamma": "dnv",
+    "kinematics_dt": 0.5,
+    "wind": {"spectrum": "npd", "f_max": 0.5},
+}
 STATS = {"block": 20.0, "method": "lmoments"}
 
 
@@ -210,8 +276,13 @@ def ms3():
 
 
 def sea(n, **kw):
-    base = dict(wind_speed=[12.1, 6.0, 18.0], wind_dir=[328.0, 90.0, 270.0], hs=[3.35, 1.0, 4.0],
-                tp=[9.21, 8.0, 11.0], wave_dir=[316.0, 300.0, 270.0])
+    base = dict(
+        wind_speed=[12.1, 6.0, 18.0],
+        wind_dir=[328.0, 90.0, 270.0],
+        hs=[3.35, 1.0, 4.0],
+        tp=[9.21, 8.0, 11.0],
+        wave_dir=[316.0, 300.0, 270.0],
+    )
     base.update(kw)
     return {k: np.asarray(v[:n], dtype=float) for k, v in base.items()}
 
@@ -246,10 +317,16 @@ def test_heavier_lines_reduce_offsets_and_raise_tensions():
     out = {}
     for ms in ("MS1", "MS3", "MS6"):
         m = moored(ms)
-        out[ms] = sim.simulate_batch(sea(1, wind_speed=[11.4], wind_dir=[270.0], wave_dir=[270.0]),
-                                     case_ids=np.array([1]), mooring_system="ref", seed=3, model_inputs=m,
-                                     sim_cfg={**SIM, "duration": 300.0, "transient": 300.0}, fatigue_cfg=None,
-                                     stats_cfg=STATS)
+        out[ms] = sim.simulate_batch(
+            sea(1, wind_speed=[11.4], wind_dir=[270.0], wave_dir=[270.0]),
+            case_ids=np.array([1]),
+            mooring_system="ref",
+            seed=3,
+            model_inputs=m,
+            sim_cfg={**SIM, "duration": 300.0, "transient": 300.0},
+            fatigue_cfg=None,
+            stats_cfg=STATS,
+        )
     surge = [out[k]["surge_mean"][0] for k in ("MS1", "MS3", "MS6")]
     ten = [out[k]["tension_mean"][0].max() for k in ("MS1", "MS3", "MS6")]
     assert surge[0] > surge[1] > surge[2] > 0
@@ -329,7 +406,9 @@ def test_decay_without_memory_gives_the_oc4_one_dof_periods(oc4):
         held = tuple(i for i in range(6) if i != d)
         t_flat = sim.linear_natural_periods(flat, locked=held)[d]
         t_mem = sim.linear_natural_periods(m, locked=held)[d]
-        assert t_flat == pytest.approx(2 * math.pi * math.sqrt(m.mass[d, d] / (m.stiffness + m.mooring_stiffness)[d, d]))
+        assert t_flat == pytest.approx(
+            2 * math.pi * math.sqrt(m.mass[d, d] / (m.stiffness + m.mooring_stiffness)[d, d])
+        )
         grid = env.record_grid(dur, 0.0, 0.1)
         q0 = np.zeros((1, 6))
         q0[0, d] = x0
@@ -360,11 +439,19 @@ def test_locked_dofs_hold_and_give_the_one_dof_periods(oc4):
     y = rec.motion[0, 4]
     assert zero_crossing_period(y, grid.dt) == pytest.approx(t_one[4], rel=0.01)
     np.testing.assert_array_equal(rec.motion[0, held], np.broadcast_to(q0[0, list(held)][:, None], (5, y.size)))
-    waves = env.wave_components(grid, np.array([4.0]), np.array([9.0]), np.array([300.0]), np.array([3.3]),
-                                env.case_streams(1, "MS1", [0], grid.n_fft // 2 + 1)[0],
-                                omega_min=float(m.omega.min()), omega_max=float(m.omega.max()))
-    f = sim.build_forcing(m, grid, waves, np.zeros((1, grid.n_steps + 1)), np.array([270.0]), kin_every=1,
-                          second_order=True)
+    waves = env.wave_components(
+        grid,
+        np.array([4.0]),
+        np.array([9.0]),
+        np.array([300.0]),
+        np.array([3.3]),
+        env.case_streams(1, "MS1", [0], grid.n_fft // 2 + 1)[0],
+        omega_min=float(m.omega.min()),
+        omega_max=float(m.omega.max()),
+    )
+    f = sim.build_forcing(
+        m, grid, waves, np.zeros((1, grid.n_steps + 1)), np.array([270.0]), kin_every=1, second_order=True
+    )
     rec = sim.integrate(m, f, transient=0.0, locked=(0, 1, 5))
     assert np.all(rec.motion[0, [0, 1, 5]] == 0.0) and np.ptp(rec.motion[0, 2]) > 0.1
     with pytest.raises(ValueError, match="locked DOFs"):
@@ -389,10 +476,20 @@ def test_simulate_store_end_to_end(oc4, tmp_path):
     write_zarr(cases, tmp_path / "results/selection/cases.zarr")
     out = tmp_path / "results/MS3/simulations.zarr"
     ds = stage.run(
-        cases=tmp_path / "results/selection/cases.zarr", platform=DATA / "platform_coarse.nc",
-        platform_cfg=REPO / "config/platform.yaml", store=out, dim="case", ms="MS3", row=ROWS["MS3"], seed=7,
-        simulation={**SIM, "duration": 120.0, "transient": 30.0}, mooring=QS, fatigue={}, statistics=STATS,
-        batch_size=2, threads=1,
+        cases=tmp_path / "results/selection/cases.zarr",
+        platform=DATA / "platform_coarse.nc",
+        platform_cfg=REPO / "config/platform.yaml",
+        store=out,
+        dim="case",
+        ms="MS3",
+        row=ROWS["MS3"],
+        seed=7,
+        simulation={**SIM, "duration": 120.0, "transient": 30.0},
+        mooring=QS,
+        fatigue={},
+        statistics=STATS,
+        batch_size=2,
+        threads=1,
     )
     back = open_zarr(out)
     for name in (*sim.names.SIM_SCALAR_VARS, *sim.names.SIM_LINE_VARS, "tension_mean", "hs", "role"):
@@ -404,9 +501,16 @@ def test_simulate_store_end_to_end(oc4, tmp_path):
 
 
 def test_keep_timeseries_returns_the_records(ms3):
-    out = sim.simulate_batch(sea(2), case_ids=np.array([3, 4]), mooring_system="MS3", seed=5, model_inputs=ms3,
-                             sim_cfg={**SIM, "keep_timeseries": True, "duration": 120.0}, fatigue_cfg=None,
-                             stats_cfg=STATS)
+    out = sim.simulate_batch(
+        sea(2),
+        case_ids=np.array([3, 4]),
+        mooring_system="MS3",
+        seed=5,
+        model_inputs=ms3,
+        sim_cfg={**SIM, "keep_timeseries": True, "duration": 120.0},
+        fatigue_cfg=None,
+        stats_cfg=STATS,
+    )
     nt = int(round(120.0 / 0.1))
     assert out["ts_surge"].shape == (2, nt) and out["ts_surge"].dtype == np.float32
     assert out["ts_tension"].shape == (2, 3, nt)
@@ -415,8 +519,9 @@ def test_keep_timeseries_returns_the_records(ms3):
     assert sim.output_attrs("ts_pitch")["units"] == "rad"
     # one attribute registry (moorlife.names) covers every output, with units
     assert set(out) <= set(sim.names.SIM_OUTPUT_ATTRS)
-    assert all(sim.output_attrs(name) == sim.names.SIM_OUTPUT_ATTRS[name] and "units" in sim.output_attrs(name)
-               for name in out)
+    assert all(
+        sim.output_attrs(name) == sim.names.SIM_OUTPUT_ATTRS[name] and "units" in sim.output_attrs(name) for name in out
+    )
     with pytest.raises(KeyError):
         sim.output_attrs("ts_unknown")
 
@@ -432,13 +537,15 @@ def test_drag_kinematics_match_linear_wave_theory(kin_every):
     w = idx * grid.d_omega
     theta = 0.4
     waves = env.WaveComponents(index=idx, omega=w, amplitude=amp, theta=np.array([theta]))
-    f = sim.build_forcing(m, grid, waves, np.zeros((1, grid.n_steps + 1)), np.array([270.0]), kin_every=kin_every,
-                          second_order=False)
+    f = sim.build_forcing(
+        m, grid, waves, np.zeros((1, grid.n_steps + 1)), np.array([270.0]), kin_every=kin_every, second_order=False
+    )
     k = env.wave_number(w, 200.0)
     t = np.arange(f.kinematics.shape[1]) * kin_every * grid.dt
     for s_, p in enumerate(m.strip_pos):
-        ph = amp[0][None, :] * np.exp(1j * (k * (p[0] * np.cos(theta) + p[1] * np.sin(theta)))[None, :]
-                                      - 1j * np.outer(t, w))
+        ph = amp[0][None, :] * np.exp(
+            1j * (k * (p[0] * np.cos(theta) + p[1] * np.sin(theta)))[None, :] - 1j * np.outer(t, w)
+        )
         uh = np.real(ph * (w * np.cosh(k * (p[2] + 200.0)) / np.sinh(k * 200.0))[None, :]).sum(axis=1)
         uz = np.real(-1j * ph * (w * np.sinh(k * (p[2] + 200.0)) / np.sinh(k * 200.0))[None, :]).sum(axis=1)
         np.testing.assert_allclose(f.kinematics[0, :, 0, s_], uh * np.cos(theta), atol=2e-5)
@@ -454,12 +561,20 @@ def test_thrust_ramps_to_zero_above_cut_out(ms3):
     from moorlife import turbine
 
     v = np.arange(-40.0, 80.0, 0.02)
-    ms3 = dataclasses.replace(ms3, thrust_speed=v, thrust_force=turbine.thrust(
-        v, np.array([3.0, 11.4, 25.0]), np.array([0.8, 0.8, 0.08])))
+    ms3 = dataclasses.replace(
+        ms3, thrust_speed=v, thrust_force=turbine.thrust(v, np.array([3.0, 11.4, 25.0]), np.array([0.8, 0.8, 0.08]))
+    )
     calm = dict(hs=[0.0], tp=[8.0], wave_dir=[270.0])
     cfg = {**SIM, "wind": {"spectrum": "none"}, "duration": 120.0, "transient": 60.0}
-    kw = dict(case_ids=np.array([1]), mooring_system="MS3", seed=1, model_inputs=ms3, sim_cfg=cfg,
-              fatigue_cfg=None, stats_cfg=STATS)
+    kw = dict(
+        case_ids=np.array([1]),
+        mooring_system="MS3",
+        seed=1,
+        model_inputs=ms3,
+        sim_cfg=cfg,
+        fatigue_cfg=None,
+        stats_cfg=STATS,
+    )
     off = sim.simulate_batch(sea(1, wind_speed=[30.0], wind_dir=[270.0], **calm), **kw)
     assert abs(off["surge_mean"][0]) < 0.05
     on = sim.simulate_batch(sea(1, wind_speed=[11.4], wind_dir=[0.0], **calm), **kw)
@@ -486,8 +601,15 @@ def test_compiled_record_loop_equals_the_per_step_loop(kind, monkeypatch):
 
     monkeypatch.setattr(batch, "integrate", spy_integrate)
     monkeypatch.setattr(integration, "_run_compiled", spy_compiled)
-    kw = dict(case_ids=np.array([3, 4]), mooring_system="MS1", seed=7, model_inputs=model,
-              sim_cfg={**SIM, "duration": 150.0, "transient": 30.0}, fatigue_cfg={}, stats_cfg=STATS)
+    kw = dict(
+        case_ids=np.array([3, 4]),
+        mooring_system="MS1",
+        seed=7,
+        model_inputs=model,
+        sim_cfg={**SIM, "duration": 150.0, "transient": 30.0},
+        fatigue_cfg={},
+        stats_cfg=STATS,
+    )
     fast = sim.simulate_batch(sea(2), **kw)
     monkeypatch.setattr(integration, "_run_compiled", lambda *a, **k: False)
     slow = sim.simulate_batch(sea(2), **kw)

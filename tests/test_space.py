@@ -79,8 +79,9 @@ def test_distances_on_known_values():
     a = np.array([[0.0], [359.0], [90.0], [180.0]])
     b = np.array([[1.0], [181.0], [270.0]])
     za, zb = space.normalise(a, [True]), space.normalise(b, [True])
-    np.testing.assert_allclose(space.pairwise_distance(za, zb, [True]), circular_difference(a, b.T) / 180.0,
-                               rtol=0, atol=1e-15)
+    np.testing.assert_allclose(
+        space.pairwise_distance(za, zb, [True]), circular_difference(a, b.T) / 180.0, rtol=0, atol=1e-15
+    )
     np.testing.assert_array_equal(space.nearest_distance(z, z, MASK, exclude_same_index=True), np.sort(d, axis=1)[:, 1])
 
 
@@ -146,15 +147,25 @@ def test_selection_and_rbf_use_the_shared_space():
     assert lc_fit.direction_mask is space.direction_mask
     # no second implementation of the embedding or the distance anywhere else in the package
     defs = re.compile(r"^def (normalise|scaling_from|fit_space|embed|pairwise_distance|squared_distances)\(", re.M)
-    others = [p.relative_to(ROOT) for p in (ROOT / "src" / "moorlife").rglob("*.py")
-              if p.name != "space.py" and defs.search(p.read_text())]
+    others = [
+        p.relative_to(ROOT)
+        for p in (ROOT / "src" / "moorlife").rglob("*.py")
+        if p.name != "space.py" and defs.search(p.read_text())
+    ]
     assert others == []
 
 
 def test_rbf_and_selection_measure_the_same_distance():
     rng = np.random.default_rng(5)
-    pts = np.column_stack([rng.uniform(0, 25, 300), rng.uniform(0, 360, 300), rng.gamma(2, 1, 300),
-                           rng.uniform(3, 18, 300), rng.uniform(0, 360, 300)])
+    pts = np.column_stack(
+        [
+            rng.uniform(0, 25, 300),
+            rng.uniform(0, 360, 300),
+            rng.gamma(2, 1, 300),
+            rng.uniform(3, 18, 300),
+            rng.uniform(0, 360, 300),
+        ]
+    )
     lo, span = selection.scaling_from(pts, MASK)
     train = selection.mda(pts, 40, is_direction=MASK, lo=lo, span=span, dtype=np.float64)
     model = rbf.fit_rbf(pts[train], pts[train, 2], is_direction=MASK, shape=0.3, lo=lo, span=span)

@@ -60,9 +60,9 @@ def test_lmoments_match_direct_definition():
     n = x.size
     s = np.sort(x)
     l2 = sum(s[j] - s[i] for i in range(n) for j in range(i + 1, n)) / (2 * math.comb(n, 2))
-    l3 = sum(
-        s[k] - 2 * s[j] + s[i] for i in range(n) for j in range(i + 1, n) for k in range(j + 1, n)
-    ) / (3 * math.comb(n, 3))
+    l3 = sum(s[k] - 2 * s[j] + s[i] for i in range(n) for j in range(i + 1, n) for k in range(j + 1, n)) / (
+        3 * math.comb(n, 3)
+    )
     a1, a2, t3 = lmoments(x)
     assert a1 == pytest.approx(x.mean()) and a2 == pytest.approx(l2) and t3 == pytest.approx(l3 / l2)
 

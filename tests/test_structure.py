@@ -93,7 +93,7 @@ def find_cycle(graph: dict[str, dict[str, int]]) -> list[str] | None:
         stack.append(m)
         for t in sorted(graph.get(m, {})):
             if state.get(t) == 1:
-                return stack[stack.index(t):] + [t]
+                return stack[stack.index(t) :] + [t]
             if t not in state:
                 found = visit(t)
                 if found:
@@ -144,8 +144,12 @@ def test_lower_layers_never_import_higher_ones():
     """Domain modules never import moorlife.io or moorlife.stages; moorlife.io never imports stages."""
     graph = import_graph()
     names = {0: "domain", 1: "io", 2: "stages"}
-    bad = [f"{m} ({names[layer(m)]}) imports {t} ({names[layer(t)]}) at line {ln}"
-           for m, deps in graph.items() for t, ln in deps.items() if layer(t) > layer(m)]
+    bad = [
+        f"{m} ({names[layer(m)]}) imports {t} ({names[layer(t)]}) at line {ln}"
+        for m, deps in graph.items()
+        for t, ln in deps.items()
+        if layer(t) > layer(m)
+    ]
     assert bad == [], "\n".join(bad)
 
 
@@ -180,6 +184,5 @@ def test_no_kernel_takes_more_than_12_parameters():
 
 
 def test_no_module_over_800_lines():
-    big = [f"{m}: {n} lines" for m, p in modules().items()
-           if (n := len(p.read_text().splitlines())) > MAX_MODULE_LINES]
+    big = [f"{m}: {n} lines" for m, p in modules().items() if (n := len(p.read_text().splitlines())) > MAX_MODULE_LINES]
     assert big == [], "\n".join(big)

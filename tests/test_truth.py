@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
+from test_workflow import OVERLAYS, SNAKEMAKE, clone_study, copy_repo, smk
 
 from moorlife import io as mio
 from moorlife import names, selection
@@ -48,15 +49,33 @@ def test_check_window_counts_hours():
 @pytest.mark.parametrize(
     ("start", "end", "stride", "n2", "pattern"),
     [
-        ("1984-12-31T00:00", "1985-01-02T00:00", 1, 2, r"'truth\.window\.start' = '1984-12-31T00:00' is outside the hindcast"),
-        ("1985-12-31T00:00", "1986-01-02T00:00", 1, 2, r"'truth\.window\.end' = '1986-01-02T00:00' is outside the hindcast"),
+        (
+            "1984-12-31T00:00",
+            "1985-01-02T00:00",
+            1,
+            2,
+            r"'truth\.window\.start' = '1984-12-31T00:00' is outside the hindcast",
+        ),
+        (
+            "1985-12-31T00:00",
+            "1986-01-02T00:00",
+            1,
+            2,
+            r"'truth\.window\.end' = '1986-01-02T00:00' is outside the hindcast",
+        ),
         ("1986-02-01T00:00", "1986-03-01T00:00", 1, 2, r"'truth\.window\.start' = '1986-02-01T00:00' is outside"),
         ("1985-03-02T00:00", "1985-03-01T00:00", 1, 2, r"'truth\.window\.end' = '1985-03-01T00:00' is before .* empty"),
         ("1985-03-01T00:10", "1985-03-01T00:50", 1, 2, r"no hour of the hindcast lies in the truth window"),
         ("1985-03-01T00:00", "1985-03-02T00:00", 0, 2, r"'truth\.stride' = 0 is invalid"),
         ("1985-03-01T00:00", "1985-03-01T09:00", 1, 11, r"'truth\.n_second_seed' = 11 is larger than the 10 hours"),
         ("1985-03-01T00:00", "1985-03-01T09:00", 5, 3, r"'truth\.n_second_seed' = 3 is larger than the 2 hours"),
-        ("1985-13-01T00:00", "1985-03-01T09:00", 1, 2, r"'truth\.window\.start' = '1985-13-01T00:00' is not an ISO 8601"),
+        (
+            "1985-13-01T00:00",
+            "1985-03-01T09:00",
+            1,
+            2,
+            r"'truth\.window\.start' = '1985-13-01T00:00' is not an ISO 8601",
+        ),
     ],
 )
 def test_check_window_names_key_and_value(start, end, stride, n2, pattern):
@@ -116,8 +135,13 @@ def test_noise_floor_known_answers():
 
 def _random_hours(n, seed=3):
     rng = np.random.default_rng(seed)
-    return {"hs": rng.gamma(2.0, 0.9, n), "wind_speed": rng.weibull(2.0, n) * 9.0, "tp": 4 + rng.gamma(3.0, 1.6, n),
-            "wave_dir": rng.uniform(0, 360, n), "wind_dir": rng.uniform(0, 360, n)}
+    return {
+        "hs": rng.gamma(2.0, 0.9, n),
+        "wind_speed": rng.weibull(2.0, n) * 9.0,
+        "tp": 4 + rng.gamma(3.0, 1.6, n),
+        "wave_dir": rng.uniform(0, 360, n),
+        "wind_dir": rng.uniform(0, 360, n),
+    }
 
 
 EDGES = dict(hs_edges=[0.0, 1.5, 3.0, 4.5], wind_edges=[0.0, 7.0, 14.0], tp_edges=[0.0, 6.0, 9.0, 12.0])
@@ -142,8 +166,11 @@ def test_hour_bins_reuse_the_scatter_matrix_rule_and_window_sum_is_direct():
     np.testing.assert_allclose(np.bincount(bins, weights=h["hs"]) / sm.hours, sm.hs)
     # the same classes as explicit comparisons
     for i in range(0, 3000, 97):
-        c = (_direct_class(h["hs"][i], EDGES["hs_edges"]), _direct_class(h["wind_speed"][i], EDGES["wind_edges"]),
-             _direct_class(h["tp"][i], EDGES["tp_edges"]))
+        c = (
+            _direct_class(h["hs"][i], EDGES["hs_edges"]),
+            _direct_class(h["wind_speed"][i], EDGES["wind_edges"]),
+            _direct_class(h["tp"][i], EDGES["tp_edges"]),
+        )
         assert tuple(classes[bins[i]]) == c
     # a window of the hours: the bin damage equals the direct sum over its hours
     rng = np.random.default_rng(1)
@@ -175,8 +202,10 @@ def _constructed(n=40, k_bins=None):
     dmg = rng.lognormal(-10, 1.0, (n, 3))
     surge = rng.normal(10, 2, n)
     met = {v: ("case", h[v]) for v in names.METOCEAN_VARS}
-    truth = xr.Dataset({**met, "hindcast_index": ("case", idx), "surge_mpm": ("case", surge),
-                        "damage_sn": (("case", "line"), dmg)}, coords={"case": idx, "line": list(names.LINES)})
+    truth = xr.Dataset(
+        {**met, "hindcast_index": ("case", idx), "surge_mpm": ("case", surge), "damage_sn": (("case", "line"), dmg)},
+        coords={"case": idx, "line": list(names.LINES)},
+    )
     n_time = 300
     rec_d = np.zeros((n_time, 3))
     rec_d[idx] = 1.1 * dmg
@@ -185,12 +214,18 @@ def _constructed(n=40, k_bins=None):
     rmet = {v: ("time", np.zeros(n_time)) for v in names.METOCEAN_VARS}
     for v in names.METOCEAN_VARS:
         rmet[v][1][idx] = h[v]
-    rec = xr.Dataset({**rmet, "surge_mpm": ("time", rec_s), "damage_sn": (("time", "line"), rec_d)},
-                     coords={"time": np.arange(n_time), "line": list(names.LINES)})
-    classes = {f"{ax}_class": ("bin", c) for ax, c in (("hs", sm.hs_class), ("wind", sm.wind_class), ("tp", sm.tp_class))}
+    rec = xr.Dataset(
+        {**rmet, "surge_mpm": ("time", rec_s), "damage_sn": (("time", "line"), rec_d)},
+        coords={"time": np.arange(n_time), "line": list(names.LINES)},
+    )
+    classes = {
+        f"{ax}_class": ("bin", c) for ax, c in (("hs", sm.hs_class), ("wind", sm.wind_class), ("tp", sm.tp_class))
+    }
     states = xr.Dataset(classes, coords={"bin": np.arange(sm.hours.size)}, attrs={k: list(v) for k, v in EDGES.items()})
     bd = rng.lognormal(-10, 1.0, (sm.hours.size, 3))
-    sims = xr.Dataset({"damage_sn": (("bin", "line"), bd)}, coords={"bin": np.arange(sm.hours.size), "line": list(names.LINES)})
+    sims = xr.Dataset(
+        {"damage_sn": (("bin", "line"), bd)}, coords={"bin": np.arange(sm.hours.size), "line": list(names.LINES)}
+    )
     # the window's hours per bin are the scatter matrix's hours of the window itself
     expected_bins = np.tensordot(sm.hours.astype(float), bd, axes=(0, 0))
     return truth, rec, states, sims, dmg, expected_bins
@@ -208,8 +243,11 @@ def test_compare_window_known_answers():
     np.testing.assert_allclose(cmp["truth_damage"].sel(curve="sn").values, dmg.sum(axis=0))
     np.testing.assert_allclose(cmp["reconstruction_error_pct"].values, 10.0)
     np.testing.assert_allclose(cmp["bins_damage"].sel(curve="sn").values, expected_bins, rtol=1e-12)
-    np.testing.assert_allclose(cmp["bins_error_pct"].sel(curve="sn").values,
-                               100 * (expected_bins - dmg.sum(axis=0)) / dmg.sum(axis=0), rtol=1e-12)
+    np.testing.assert_allclose(
+        cmp["bins_error_pct"].sel(curve="sn").values,
+        100 * (expected_bins - dmg.sum(axis=0)) / dmg.sum(axis=0),
+        rtol=1e-12,
+    )
     np.testing.assert_allclose(cmp["truth_cumulative"].isel(hour=-1).values, cmp["truth_damage"].values)
     np.testing.assert_allclose(cmp["bins_cumulative"].isel(hour=-1).values, cmp["bins_damage"].values)
     np.testing.assert_allclose(cmp["noise_r"].values, 1.0)
@@ -227,7 +265,6 @@ def test_compare_window_known_answers():
 
 # --------------------------------------------------------------------------- the workflow, tiny config
 
-from test_workflow import OVERLAYS, SNAKEMAKE, clone_study, copy_repo, smk
 
 TARGET = "results/MS1/truth_comparison.zarr"
 N_HOURS = 32
@@ -240,14 +277,18 @@ def truth_study(study, tmp_path_factory) -> Path:
     cases = mio.open_zarr(work / "results/selection/cases.zarr")
     hc = mio.open_zarr(work / "results/metocean/hindcast.zarr", load=False)
     n_time = hc.sizes["time"]
-    train = [int(c) for c, r, h in zip(cases.case.values, cases.role.values, cases.hindcast_index.values)
-             if str(r) == "train" and 20 <= int(h) < n_time - 20]
+    train = [
+        int(c)
+        for c, r, h in zip(cases.case.values, cases.role.values, cases.hindcast_index.values)
+        if str(r) == "train" and 20 <= int(h) < n_time - 20
+    ]
     k = train[0]
     h = int(cases["hindcast_index"].sel(case=k))
     times = pd.DatetimeIndex(hc["time"].values)
     start, end = times[h - 12], times[h - 12 + N_HOURS - 1]
     (work / "truth.yaml").write_text(
-        f'truth:\n  window: {{start: "{start:%Y-%m-%dT%H:%M}", end: "{end:%Y-%m-%dT%H:%M}"}}\n  n_second_seed: 8\n')
+        f'truth:\n  window: {{start: "{start:%Y-%m-%dT%H:%M}", end: "{end:%Y-%m-%dT%H:%M}"}}\n  n_second_seed: 8\n'
+    )
     (work / "train_case.txt").write_text(f"{k} {h}\n")
     smk(work, TARGET, overlays=[*OVERLAYS, "truth.yaml"])
     return work
@@ -266,14 +307,29 @@ def test_truth_window_end_to_end(truth_study):
     assert np.all(np.diff(tr["hindcast_index"].values) == 1)
     s2 = mio.open_zarr(w / "results/MS1/truth_seed2.zarr")
     assert s2.sizes["case"] == 8 and s2.attrs["random_stream"] == "truth_seed2"
-    np.testing.assert_array_equal(s2["hindcast_index"].values, tr["hindcast_index"].values[T.second_seed_subset(N_HOURS, 8)])
+    np.testing.assert_array_equal(
+        s2["hindcast_index"].values, tr["hindcast_index"].values[T.second_seed_subset(N_HOURS, 8)]
+    )
     # same hours, other stream: the outputs differ
     assert not np.array_equal(s2["damage_sn"].values, tr["damage_sn"].sel(case=s2["case"].values).values)
     cmp = mio.open_zarr(w / TARGET)
     assert cmp.attrs["n_hours"] == N_HOURS and cmp.attrs["n_seed2"] == 8
     labels = list(cmp["output"].values)
-    for v in ("surge_mpm", "sway_mpm", "heave_mpm", "accel_mpm", "accel_p90", "accel_p95", "accel_p99",
-              "tension_mpm/M1", "damage_sn/M2", "damage_tn/M3", "tension_mean/M1", "surge_mean", "sway_mean"):
+    for v in (
+        "surge_mpm",
+        "sway_mpm",
+        "heave_mpm",
+        "accel_mpm",
+        "accel_p90",
+        "accel_p95",
+        "accel_p99",
+        "tension_mpm/M1",
+        "damage_sn/M2",
+        "damage_tn/M3",
+        "tension_mean/M1",
+        "surge_mean",
+        "sway_mean",
+    ):
         assert v in labels
     assert np.all(np.isfinite(cmp["r"].values)) and np.all(np.isfinite(cmp["noise_r"].values))
     assert np.all(cmp["truth_damage"].values > 0) and np.all(cmp["bins_damage"].values > 0)
@@ -283,8 +339,10 @@ def test_truth_window_end_to_end(truth_study):
         assert (w / "results/figures" / fig).stat().st_size > 10_000
     # the reconstruction compared is lifecycle.zarr at the truth hours
     lc = mio.open_zarr(w / "results/MS1/lifecycle.zarr", load=False)
-    np.testing.assert_array_equal(cmp["reconstruction"].sel(output="surge_mpm").values,
-                                  lc["surge_mpm"].isel(time=tr["hindcast_index"].values).values)
+    np.testing.assert_array_equal(
+        cmp["reconstruction"].sel(output="surge_mpm").values,
+        lc["surge_mpm"].isel(time=tr["hindcast_index"].values).values,
+    )
     np.testing.assert_array_equal(cmp["truth"].sel(output="damage_sn/M2").values, tr["damage_sn"].sel(line="M2").values)
     # nothing left to do; the default target does not contain the truth
     dry = smk(w, TARGET, "-n", overlays=_ov())
@@ -310,21 +368,33 @@ def test_window_bin_damage_is_the_direct_sum(truth_study):
     sims = mio.open_zarr(w / "results/MS1/discrete.zarr")
     cmp = mio.open_zarr(w / TARGET)
     a = states.attrs
-    cls = {(int(states.hs_class[b]), int(states.wind_class[b]), int(states.tp_class[b])): int(states.bin[b])
-           for b in range(states.sizes["bin"])}
+    cls = {
+        (int(states.hs_class[b]), int(states.wind_class[b]), int(states.tp_class[b])): int(states.bin[b])
+        for b in range(states.sizes["bin"])
+    }
     for curve, var in (("sn", "damage_sn"), ("tn", "damage_tn")):
         direct = np.zeros(3)
         for i in range(tr.sizes["case"]):
-            key = (_direct_class(float(tr.hs[i]), a["hs_edges"]), _direct_class(float(tr.wind_speed[i]), a["wind_edges"]),
-                   _direct_class(float(tr.tp[i]), a["tp_edges"]))
+            key = (
+                _direct_class(float(tr.hs[i]), a["hs_edges"]),
+                _direct_class(float(tr.wind_speed[i]), a["wind_edges"]),
+                _direct_class(float(tr.tp[i]), a["tp_edges"]),
+            )
             direct += sims[var].sel(bin=cls[key]).transpose("line").values
         np.testing.assert_allclose(cmp["bins_damage"].sel(curve=curve).values, direct, rtol=1e-12)
         np.testing.assert_allclose(cmp["truth_damage"].sel(curve=curve).values, tr[var].sum("case").values, rtol=1e-12)
     # the same bin rule over the whole hindcast gives the bins' hours
     hc = mio.open_zarr(w / "results/metocean/hindcast.zarr")
     classes = np.column_stack([states[f"{ax}_class"].values for ax in ("hs", "wind", "tp")])
-    bins = T.hour_bins(hc.hs.values, hc.wind_speed.values, hc.tp.values, hs_edges=a["hs_edges"],
-                       wind_edges=a["wind_edges"], tp_edges=a["tp_edges"], bin_classes=classes)
+    bins = T.hour_bins(
+        hc.hs.values,
+        hc.wind_speed.values,
+        hc.tp.values,
+        hs_edges=a["hs_edges"],
+        wind_edges=a["wind_edges"],
+        tp_edges=a["tp_edges"],
+        bin_classes=classes,
+    )
     np.testing.assert_array_equal(np.bincount(bins, minlength=states.sizes["bin"]), states["hours"].values)
 
 
@@ -337,8 +407,9 @@ def test_truth_hour_equal_to_training_case_differs_only_in_stream(truth_study, t
 
     w = truth_study
     k, h = map(int, (w / "train_case.txt").read_text().split())
-    cfg = mio.read_study_config(w / "config/config.yaml", tuple(w / o for o in _ov()),
-                                schema=w / "workflow/schemas/config.schema.yaml")
+    cfg = mio.read_study_config(
+        w / "config/config.yaml", tuple(w / o for o in _ov()), schema=w / "workflow/schemas/config.schema.yaml"
+    )
     row = mio.read_mooring_systems(w / cfg["mooring_systems"]).loc["MS1"]
     row = {c: (v.item() if hasattr(v, "item") else v) for c, v in row.items()}
     cases = mio.open_zarr(w / "results/selection/cases.zarr")
@@ -348,9 +419,19 @@ def test_truth_hour_equal_to_training_case_differs_only_in_stream(truth_study, t
         assert float(one[v].values[0]) == float(hours[v].sel(case=h))
     sims = mio.open_zarr(w / "results/MS1/simulations.zarr")
     tr = mio.open_zarr(w / "results/MS1/truth.zarr")
-    kw = dict(dim="case", ms="MS1", row=row, seed=cfg["seed"], simulation=cfg["simulation"],
-              mooring=cfg["mooring"], fatigue=cfg["fatigue"], statistics=cfg["statistics"], threads=1,
-              platform=w / "results/hydro/platform.nc", platform_cfg=w / cfg["platform"])
+    kw = dict(
+        dim="case",
+        ms="MS1",
+        row=row,
+        seed=cfg["seed"],
+        simulation=cfg["simulation"],
+        mooring=cfg["mooring"],
+        fatigue=cfg["fatigue"],
+        statistics=cfg["statistics"],
+        threads=1,
+        platform=w / "results/hydro/platform.nc",
+        platform_cfg=w / cfg["platform"],
+    )
     out = {}
     for name, store, stream in (("case", one, None), ("truth", one.assign_coords(case=[h]), "truth")):
         path = tmp_path / f"{name}_in.zarr"
@@ -385,8 +466,9 @@ def test_truth_kill_and_resume_is_bit_identical(truth_study, tmp_path):
     cmd = [SNAKEMAKE, "--cores", "2", target, "--configfile", *overlays]
     env = {**os.environ, "PYTHONWARNINGS": "ignore"}
     env.pop("DASK_SCHEDULER_ADDRESS", None)
-    proc = subprocess.Popen(cmd, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                            start_new_session=True, env=env)
+    proc = subprocess.Popen(
+        cmd, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True, env=env
+    )
     deadline = time.time() + 600
     while _done_batches(part) < 3 and proc.poll() is None and time.time() < deadline:
         time.sleep(0.02)
@@ -397,23 +479,32 @@ def test_truth_kill_and_resume_is_bit_identical(truth_study, tmp_path):
     assert 3 <= n_before < N_HOURS
     smk(work, "--unlock", overlays=overlays)
     smk(work, target, overlays=overlays)
-    m = re.search(r"resuming .*: (\d+) of (\d+) batches already done", (work / "logs/MS1/truth_simulate.log").read_text())
+    m = re.search(
+        r"resuming .*: (\d+) of (\d+) batches already done", (work / "logs/MS1/truth_simulate.log").read_text()
+    )
     assert m and int(m.group(1)) >= n_before and int(m.group(2)) == N_HOURS
-    xr.testing.assert_identical(mio.open_zarr(work / target).drop_attrs(),
-                                mio.open_zarr(truth_study / target).drop_attrs())
+    xr.testing.assert_identical(
+        mio.open_zarr(work / target).drop_attrs(), mio.open_zarr(truth_study / target).drop_attrs()
+    )
 
 
 @pytest.mark.workflow
 @pytest.mark.parametrize(
     ("yaml", "pattern"),
     [
-        ('truth:\n  window: {start: "1984-12-01T00:00", end: "1985-01-02T00:00"}\n',
-         r"config key 'truth\.window\.start' = '1984-12-01T00:00' is outside the hindcast"),
-        ('truth:\n  window: {start: "1985-03-02T00:00", end: "1985-03-01T00:00"}\n',
-         r"config key 'truth\.window\.end' = '1985-03-01T00:00' is before"),
+        (
+            'truth:\n  window: {start: "1984-12-01T00:00", end: "1985-01-02T00:00"}\n',
+            r"config key 'truth\.window\.start' = '1984-12-01T00:00' is outside the hindcast",
+        ),
+        (
+            'truth:\n  window: {start: "1985-03-02T00:00", end: "1985-03-01T00:00"}\n',
+            r"config key 'truth\.window\.end' = '1985-03-01T00:00' is before",
+        ),
         ("truth:\n  stride: 0\n", r"config key 'truth\.stride' = 0 is invalid"),
-        ('truth:\n  window: {start: "1985-03-01T00:00", end: "1985-03-01T09:00"}\n  n_second_seed: 20\n',
-         r"config key 'truth\.n_second_seed' = 20 is larger than the 10 hours"),
+        (
+            'truth:\n  window: {start: "1985-03-01T00:00", end: "1985-03-01T09:00"}\n  n_second_seed: 20\n',
+            r"config key 'truth\.n_second_seed' = 20 is larger than the 10 hours",
+        ),
     ],
     ids=["outside", "empty", "stride0", "seed2-too-many"],
 )

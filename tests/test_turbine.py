@@ -25,8 +25,18 @@ AREA = np.pi * 63.0**2
 
 # Published thrust (kN) of NREL/turbine-models@be1ca72e Offshore/NREL_5MW_126_RWT.csv,
 # the table chosen in config/platform.yaml (its Ct column is derived from these).
-PUBLISHED_KN = {3: 171.7, 5: 268.9, 8: 478.0, 10: 691.496, 11.3: 819.271, 11.4: 805.112, 12: 689.957,
-                15: 520.5, 20: 418.8, 25: 369.3}
+PUBLISHED_KN = {
+    3: 171.7,
+    5: 268.9,
+    8: 478.0,
+    10: 691.496,
+    11.3: 819.271,
+    11.4: 805.112,
+    12: 689.957,
+    15: 520.5,
+    20: 418.8,
+    25: 369.3,
+}
 
 
 @pytest.fixture(scope="module")
@@ -91,8 +101,9 @@ def test_filter_steps_match_scipy_and_remove_band():
     t = np.arange(0, 600, dt)
     u = 11.0 + np.sin(w0 * t) + 0.5 * np.sin(10 * w0 * t)
     y = filter_signal(f, u, dt)
-    _, y_ref, _ = scipy.signal.lsim((f.A, f.B[:, None], f.C[None, :], [[f.D]]), u, t,
-                                    X0=np.linalg.solve(-f.A, f.B * u[0]), interp=False)
+    _, y_ref, _ = scipy.signal.lsim(
+        (f.A, f.B[:, None], f.C[None, :], [[f.D]]), u, t, X0=np.linalg.solve(-f.A, f.B * u[0]), interp=False
+    )
     np.testing.assert_allclose(y, y_ref, atol=1e-9)
     tail = t > 300
     resid = y[tail] - 11.0 - 0.5 * np.sin(10 * w0 * t[tail])

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from moorlife.io.wamit import read_wamit_1, read_wamit_12d, read_wamit_3, read_wamit_dataset, read_wamit_hst
+from moorlife.io.wamit import read_wamit_1, read_wamit_3, read_wamit_12d, read_wamit_dataset, read_wamit_hst
 
 RHO, G, L = 1000.0, 10.0, 2.0  # deliberately not 1025 / 9.80665 / 1 so every scale shows
 
@@ -25,8 +25,10 @@ def _write_1(path, periods, A, B, A_inf, A_zero, pairs):
         w = 2 * np.pi / per
         for i, j in pairs:
             k = _k(i, j, 3)
-            lines.append(f"{per:14.6E} {i:5d} {j:5d} {A[n, i - 1, j - 1] / (RHO * L**k):14.6E} "
-                         f"{B[n, i - 1, j - 1] / (RHO * L**k * w):14.6E}")
+            lines.append(
+                f"{per:14.6E} {i:5d} {j:5d} {A[n, i - 1, j - 1] / (RHO * L**k):14.6E} "
+                f"{B[n, i - 1, j - 1] / (RHO * L**k * w):14.6E}"
+            )
     path.write_text("\n".join(lines) + "\n")
 
 
@@ -123,8 +125,10 @@ def _write_3(path, periods, betas, X):
             for i in range(1, 7):
                 m = 2 if i <= 3 else 3
                 xb = X[n, h, i - 1] / (RHO * G * L**m)
-                lines.append(f"{per:14.6E} {beta:14.6E} {i:5d} {abs(xb):14.6E} {np.angle(xb, deg=True):14.6E} "
-                             f"{xb.real:14.6E} {xb.imag:14.6E}")
+                lines.append(
+                    f"{per:14.6E} {beta:14.6E} {i:5d} {abs(xb):14.6E} {np.angle(xb, deg=True):14.6E} "
+                    f"{xb.real:14.6E} {xb.imag:14.6E}"
+                )
     path.write_text("\n".join(lines) + "\n")
 
 
@@ -176,8 +180,10 @@ def _write_12d(path, periods, drift, beta=0.0, header=True):
             for i in (1, 2, 3, 5, 6):
                 m = 1 if i <= 3 else 2
                 val = drift[n, i - 1] / (RHO * G * L**m) if per2 == per else 99.0
-                lines.append(f"{per:14.5E} {per2:14.5E} {beta:14.5E} {beta:14.5E} {i:4d} {abs(val):12.5E} "
-                             f"{0.0 if val >= 0 else 180.0:12.5E} {val:12.5E} {0.5:12.5E}")
+                lines.append(
+                    f"{per:14.5E} {per2:14.5E} {beta:14.5E} {beta:14.5E} {i:4d} {abs(val):12.5E} "
+                    f"{0.0 if val >= 0 else 180.0:12.5E} {val:12.5E} {0.5:12.5E}"
+                )
     path.write_text("\n".join(lines) + "\n")
 
 

@@ -41,8 +41,15 @@ def copy_repo(dst: Path) -> Path:
     return dst
 
 
-def smk(workdir: Path, *args: str, cores: int = 2, check: bool = True, overlays=OVERLAYS,
-        timeout: float = 900, env_extra: dict | None = None) -> subprocess.CompletedProcess:
+def smk(
+    workdir: Path,
+    *args: str,
+    cores: int = 2,
+    check: bool = True,
+    overlays=OVERLAYS,
+    timeout: float = 900,
+    env_extra: dict | None = None,
+) -> subprocess.CompletedProcess:
     # targets and flags first: --configfile takes every following word as a file
     cmd = [SNAKEMAKE, "--cores", str(cores), *args, "--configfile", *overlays]
     env = {**os.environ, "PYTHONWARNINGS": "ignore"}
@@ -156,8 +163,7 @@ def test_sigkill_during_fanout_then_resume_is_bit_identical(study, tmp_path):
     overlays = [*OVERLAYS, "slow.yaml"]
     part = mio.partial_path(work / target)
     cmd = [SNAKEMAKE, "--cores", "2", target, "--configfile", *overlays]
-    proc = subprocess.Popen(cmd, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                            start_new_session=True)
+    proc = subprocess.Popen(cmd, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
     deadline = time.time() + 600
     while _done_batches(part) < 2 and proc.poll() is None and time.time() < deadline:
         time.sleep(0.02)
@@ -185,8 +191,14 @@ def test_unlock_needs_no_cores(tmp_path):
     """`snakemake --unlock` as the README writes it: no --cores (threads sized by all_cores())."""
     work = copy_repo(tmp_path)
     env = {**os.environ, "PYTHONWARNINGS": "ignore"}
-    res = subprocess.run([SNAKEMAKE, "--unlock", "--configfile", *OVERLAYS], cwd=work, capture_output=True,
-                         text=True, timeout=300, env=env)
+    res = subprocess.run(
+        [SNAKEMAKE, "--unlock", "--configfile", *OVERLAYS],
+        cwd=work,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env=env,
+    )
     assert res.returncode == 0, res.stderr[-3000:]
     assert "Unlocked working directory" in res.stdout + res.stderr
 
@@ -197,11 +209,13 @@ def test_report_opens_on_the_answer(study, tmp_path):
     smk(study, "--report", str(html_path))
     html = html_path.read_text(encoding="utf-8")
     rec = mio.read_yaml(study / "results" / "comparison" / "recommendation.yaml")
-    answer = (f"Recommended mooring system: {rec['recommended']}" if rec["recommended"]
-              else "No mooring system passes")
+    answer = f"Recommended mooring system: {rec['recommended']}" if rec["recommended"] else "No mooring system passes"
     assert answer in html
-    for heading in ("Life-cycle fatigue per mooring system, line and curve",
-                    "Matrix vs life-cycle damage, mean difference (%)", "The answer"):
+    for heading in (
+        "Life-cycle fatigue per mooring system, line and curve",
+        "Matrix vs life-cycle damage, mean difference (%)",
+        "The answer",
+    ):
         assert heading in html, heading
     assert "has not run yet" not in html
     # the numbers are this run's: every row of summary.csv, by its life-cycle damage

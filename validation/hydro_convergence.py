@@ -38,8 +38,10 @@ def solve_case(members, panel_size: float, around: float) -> dict[str, float]:
     out: dict[str, float] = {"panels": float(body.mesh.nb_faces)}
     solver = cpt.BEMSolver()
     for w in OMEGAS:
-        surge, heave = solver.solve_all([cpt.RadiationProblem(body=body, omega=w, radiating_dof=d, **kw)
-                                         for d in ("Surge", "Heave")], progress_bar=False)
+        surge, heave = solver.solve_all(
+            [cpt.RadiationProblem(body=body, omega=w, radiating_dof=d, **kw) for d in ("Surge", "Heave")],
+            progress_bar=False,
+        )
         tag = "inf" if np.isinf(w) else f"{w:g}"
         out[f"A11_{tag}"] = float(surge.added_masses["Surge"])
         out[f"A33_{tag}"] = float(heave.added_masses["Heave"])
@@ -55,16 +57,21 @@ def main(argv: list[str]) -> None:
     if no_braces:
         members = [m for m in members if m.kind != "brace"]
     print(f"hull: {'columns only' if no_braces else 'columns and braces'}")
-    print("| panel size (m) | around | panels | A11(inf) (kg) | vs WAMIT | A11(0.06) (kg) | vs WAMIT "
-          "| A33(inf) (kg) | vs WAMIT | B33(1.2) (N s/m) | vs WAMIT | time (s) |")
+    print(
+        "| panel size (m) | around | panels | A11(inf) (kg) | vs WAMIT | A11(0.06) (kg) | vs WAMIT "
+        "| A33(inf) (kg) | vs WAMIT | B33(1.2) (N s/m) | vs WAMIT | time (s) |"
+    )
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for size, around in cases:
         t0 = time.time()
         r = solve_case(members, size, around)
         rel = {k: 100.0 * (r[k] / WAMIT[k] - 1.0) for k in WAMIT}
-        print(f"| {size:g} | {around:g} | {r['panels']:.0f} | {r['A11_inf']:.4e} | {rel['A11_inf']:+.1f} % "
-              f"| {r['A11_0.06']:.4e} | {rel['A11_0.06']:+.1f} % | {r['A33_inf']:.4e} | {rel['A33_inf']:+.1f} % "
-              f"| {r['B33_1.2']:.4e} | {rel['B33_1.2']:+.1f} % | {time.time() - t0:.0f} |", flush=True)
+        print(
+            f"| {size:g} | {around:g} | {r['panels']:.0f} | {r['A11_inf']:.4e} | {rel['A11_inf']:+.1f} % "
+            f"| {r['A11_0.06']:.4e} | {rel['A11_0.06']:+.1f} % | {r['A33_inf']:.4e} | {rel['A33_inf']:+.1f} % "
+            f"| {r['B33_1.2']:.4e} | {rel['B33_1.2']:+.1f} % | {time.time() - t0:.0f} |",
+            flush=True,
+        )
 
 
 if __name__ == "__main__":

@@ -38,9 +38,17 @@ def _curves(ds, omega):
     X = np.abs(ds["excitation"].values[:, int(np.argmin(np.abs(ds["heading"].values))), :])
     w = ds["omega"].values
     out = {}
-    for name, arr in (("A11", A[:, 0, 0]), ("A33", A[:, 2, 2]), ("A55", A[:, 4, 4]),
-                      ("B11", B[:, 0, 0]), ("B33", B[:, 2, 2]), ("B55", B[:, 4, 4]),
-                      ("|X1|", X[:, 0]), ("|X3|", X[:, 2]), ("|X5|", X[:, 4])):
+    for name, arr in (
+        ("A11", A[:, 0, 0]),
+        ("A33", A[:, 2, 2]),
+        ("A55", A[:, 4, 4]),
+        ("B11", B[:, 0, 0]),
+        ("B33", B[:, 2, 2]),
+        ("B55", B[:, 4, 4]),
+        ("|X1|", X[:, 0]),
+        ("|X3|", X[:, 2]),
+        ("|X5|", X[:, 4]),
+    ):
         out[name] = np.interp(omega, w, arr)
     return out
 
@@ -55,9 +63,11 @@ def main(argv: list[str]) -> int:
     band = (w >= BAND[0] - 1e-9) & (w <= BAND[1] + 1e-9)
     wb = w[band]
     co, cr = _curves(ours, wb), _curves(ref, wb)
-    print(f"## Capytaine ({ours.attrs.get('panels')} panels, panel size {ours.attrs.get('panel_size')} m, "
-          f"lid {bool(ours.attrs.get('irregular_frequency_removal'))}) vs WAMIT, {wb.size} frequencies "
-          f"in {BAND[0]}-{BAND[1]} rad/s\n")
+    print(
+        f"## Capytaine ({ours.attrs.get('panels')} panels, panel size {ours.attrs.get('panel_size')} m, "
+        f"lid {bool(ours.attrs.get('irregular_frequency_removal'))}) vs WAMIT, {wb.size} frequencies "
+        f"in {BAND[0]}-{BAND[1]} rad/s\n"
+    )
     print("| quantity | WAMIT peak in band | max abs error / peak | median point-wise rel. error | goal 10 % |")
     print("|---|---|---|---|---|")
     ok_all = True
@@ -74,32 +84,45 @@ def main(argv: list[str]) -> int:
     Km = np.diag(pcfg["mooring_stiffness_diag"])
     pub = pcfg["reference_natural_periods"]
     definition_a = np.diag(pcfg["reference_added_mass_inf_diag"])
-    print("\n## Natural periods (s), the OC4 definition's convention: one DOF at a time, M + A_inf;"
-          " hydrostatics + gravity (-m g zG) + OC4 linear mooring\n")
-    print("The OC4 definition tabulates A11 6.49e6 kg, A33 1.47e7 kg, A55 7.21e9 kg m2: the"
-          " infinite-frequency limit (WAMIT's A11 at 0.01 rad/s is 8.75e6 kg). Goal 5 %.\n")
-    print("| dof | published | moorlife (Capytaine A_inf) | diff | WAMIT A_inf (Ogilvie) | diff "
-          "| WAMIT A_inf (.1 file) | diff | OC4 definition's A | diff |")
+    print(
+        "\n## Natural periods (s), the OC4 definition's convention: one DOF at a time, M + A_inf;"
+        " hydrostatics + gravity (-m g zG) + OC4 linear mooring\n"
+    )
+    print(
+        "The OC4 definition tabulates A11 6.49e6 kg, A33 1.47e7 kg, A55 7.21e9 kg m2: the"
+        " infinite-frequency limit (WAMIT's A11 at 0.01 rad/s is 8.75e6 kg). Goal 5 %.\n"
+    )
+    print(
+        "| dof | published | moorlife (Capytaine A_inf) | diff | WAMIT A_inf (Ogilvie) | diff "
+        "| WAMIT A_inf (.1 file) | diff | OC4 definition's A | diff |"
+    )
     print("|---|---|---|---|---|---|---|---|---|---|")
     names = ("surge", "heave", "pitch")
     zero = np.array([0.0])
     C_ours = ours["hydrostatic_stiffness"].values + hydro.gravity_stiffness(mtot, cg, g) + Km
     C_ref = ref["hydrostatic_stiffness"].values + hydro.gravity_stiffness(mtot, cg, g) + Km
     ref_model = hydro.load_platform_model(ref, pcfg)
-    a_ogilvie = hydro.added_mass_infinite_ogilvie(ref_model.omega[ref_model.omega > 0.2],
-                                                  ref_model.added_mass[ref_model.omega > 0.2],
-                                                  ref_model.kernel_t, ref_model.kernel)
-    cols = [hydro.natural_periods(M, zero, ours["added_mass_inf"].values[None], C_ours),
-            hydro.natural_periods(M, zero, a_ogilvie[None], C_ref),
-            hydro.natural_periods(M, zero, ref["added_mass_inf"].values[None], C_ref),
-            hydro.natural_periods(M, zero, definition_a[None], C_ours)]
+    a_ogilvie = hydro.added_mass_infinite_ogilvie(
+        ref_model.omega[ref_model.omega > 0.2],
+        ref_model.added_mass[ref_model.omega > 0.2],
+        ref_model.kernel_t,
+        ref_model.kernel,
+    )
+    cols = [
+        hydro.natural_periods(M, zero, ours["added_mass_inf"].values[None], C_ours),
+        hydro.natural_periods(M, zero, a_ogilvie[None], C_ref),
+        hydro.natural_periods(M, zero, ref["added_mass_inf"].values[None], C_ref),
+        hydro.natural_periods(M, zero, definition_a[None], C_ours),
+    ]
     for i, name in enumerate(names):
         p = pub[name]
         ok_all &= abs(cols[0][i] / p - 1) <= 0.05
         print(f"| {name} | {p} | " + " | ".join(f"{c[i]:.1f} | {100 * (c[i] / p - 1):+.1f} %" for c in cols) + " |")
 
-    print("\n## Natural periods (s), frequency-dependent: M + A(w_n) (fixed point), one DOF at a time;"
-          " same restoring (for information: what a decay test with radiation memory sees)\n")
+    print(
+        "\n## Natural periods (s), frequency-dependent: M + A(w_n) (fixed point), one DOF at a time;"
+        " same restoring (for information: what a decay test with radiation memory sees)\n"
+    )
     print("| dof | published | moorlife (Capytaine) | diff | with WAMIT coefficients | diff |")
     print("|---|---|---|---|---|---|")
     rows = []
@@ -113,22 +136,30 @@ def main(argv: list[str]) -> int:
     print("\n## Other checks\n")
     ai, ar = ours["added_mass_inf"].values, ref["added_mass_inf"].values
     for i, n in ((0, "A11"), (2, "A33"), (4, "A55"), (5, "A66")):
-        print(f"- infinite-frequency {n}: {ai[i, i]:.4g} vs WAMIT {ar[i, i]:.4g} ({100 * (ai[i, i] / ar[i, i] - 1):+.1f} %)")
+        print(
+            f"- infinite-frequency {n}: {ai[i, i]:.4g} vs WAMIT {ar[i, i]:.4g} ({100 * (ai[i, i] / ar[i, i] - 1):+.1f} %)"
+        )
     ci, cref = ours["hydrostatic_stiffness"].values, ref["hydrostatic_stiffness"].values
     for i, n in ((2, "C33"), (4, "C55")):
-        print(f"- hydrostatic {n} (no gravity term): {ci[i, i]:.4g} vs WAMIT .hst {cref[i, i]:.4g} "
-              f"({100 * (ci[i, i] / cref[i, i] - 1):+.1f} %)")
+        print(
+            f"- hydrostatic {n} (no gravity term): {ci[i, i]:.4g} vs WAMIT .hst {cref[i, i]:.4g} "
+            f"({100 * (ci[i, i] / cref[i, i] - 1):+.1f} %)"
+        )
     print(f"- displaced volume {ours.attrs.get('displaced_volume', float('nan')):.0f} m3 (OC4: 13,917 m3)")
     if "drift" in ours and "drift" in ref:
         dw = np.array([0.5, 0.7, 0.9, 1.1, 1.3, 1.5])
         d_o = np.interp(dw, w, ours["drift"].values[:, 0, 0])
         d_r = np.interp(dw, ref["omega"].values, ref["drift"].values[:, 0, 0])
-        print("- mean surge drift, heading 0 (kN/m2), moorlife far-field vs WAMIT .12d: "
-              + ", ".join(f"{a:.2f} rad/s {o / 1e3:.1f} vs {r / 1e3:.1f}" for a, o, r in zip(dw, d_o, d_r)))
+        print(
+            "- mean surge drift, heading 0 (kN/m2), moorlife far-field vs WAMIT .12d: "
+            + ", ".join(f"{a:.2f} rad/s {o / 1e3:.1f} vs {r / 1e3:.1f}" for a, o, r in zip(dw, d_o, d_r))
+        )
     model = hydro.load_platform_model(ours, pcfg)
-    print(f"- radiation state space: {model.ss_A.shape[0]} states, kernel fit error "
-          f"{100 * model.ss_kernel_error:.2f} % of max |K|, damping fit error {100 * model.ss_damping_error:.2f} % "
-          "of max |B| (all 36 terms)")
+    print(
+        f"- radiation state space: {model.ss_A.shape[0]} states, kernel fit error "
+        f"{100 * model.ss_kernel_error:.2f} % of max |K|, damping fit error {100 * model.ss_damping_error:.2f} % "
+        "of max |B| (all 36 terms)"
+    )
     print(f"\noverall: {'PASS' if ok_all else 'FAIL'}")
     return 0
 

@@ -17,8 +17,9 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def main() -> None:
-    cfg = read_study_config(ROOT / "config/config.yaml", (ROOT / "config/quick.yaml",),
-                            schema=ROOT / "workflow/schemas/config.schema.yaml")
+    cfg = read_study_config(
+        ROOT / "config/config.yaml", (ROOT / "config/quick.yaml",), schema=ROOT / "workflow/schemas/config.schema.yaml"
+    )
     settings = bem_settings(cfg["hydro"], read_yaml(ROOT / "config/platform.yaml"))
     ds = bem_from_settings(settings, n_jobs=1)
     out = write_platform_nc(ds, ROOT / "tests/data/platform_coarse.nc")

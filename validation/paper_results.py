@@ -48,12 +48,24 @@ def damage_table(summary: pd.DataFrame) -> str:
     rows = []
     for ms, d in summary.groupby("mooring_system", sort=False):
         cell = {(r.line, r.curve): r for r in d.itertuples()}
-        dmg = [f"{cell[(ln, 'sn')].lifecycle_damage:.3g} / {cell[(ln, 'tn')].lifecycle_damage:.3g}" for ln in ("M1", "M2", "M3")]
+        dmg = [
+            f"{cell[(ln, 'sn')].lifecycle_damage:.3g} / {cell[(ln, 'tn')].lifecycle_damage:.3g}"
+            for ln in ("M1", "M2", "M3")
+        ]
         life = min(d[d.curve == "sn"].fatigue_life_years), min(d[d.curve == "tn"].fatigue_life_years)
         ok = "yes" if d.passes.all() else "no"
-        rows.append([f"{ms} ({d.mass_kg_per_m.iloc[0]:g} kg/m)", *dmg, f"{life[0]:.3g} / {life[1]:.3g}",
-                     f"{d.utilisation.max():.2f}", ok])
-    return _table(["system", "M1 damage", "M2 damage", "M3 damage", "shortest life (y)", "max DFF x damage", "passes"], rows)
+        rows.append(
+            [
+                f"{ms} ({d.mass_kg_per_m.iloc[0]:g} kg/m)",
+                *dmg,
+                f"{life[0]:.3g} / {life[1]:.3g}",
+                f"{d.utilisation.max():.2f}",
+                ok,
+            ]
+        )
+    return _table(
+        ["system", "M1 damage", "M2 damage", "M3 damage", "shortest life (y)", "max DFF x damage", "passes"], rows
+    )
 
 
 def table7(summary: pd.DataFrame) -> str:
@@ -78,8 +90,16 @@ def main(results: str = "results") -> None:
     print(f"\nrecommended: {rec.get('recommended')}  ({rec.get('rule')})")
     print("max utilisation: " + ", ".join(f"{k} {v:.2f}" for k, v in rec.get("max_utilisation", {}).items()))
     print("seed CV of life: " + ", ".join(f"{k} {v:.3f}" for k, v in rec.get("seed_cv", {}).items()))
-    print("validation r below 0.98: " + str(int(np.sum([
-        (open_zarr(root / ms / "lifecycle.zarr")["validation_r"].values < 0.98).sum() for ms in systems]))))
+    print(
+        "validation r below 0.98: "
+        + str(
+            int(
+                np.sum(
+                    [(open_zarr(root / ms / "lifecycle.zarr")["validation_r"].values < 0.98).sum() for ms in systems]
+                )
+            )
+        )
+    )
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@ validation r on the 225 states. Motivation: the damage of the lines away from th
 in a narrow band of wind speed just above rated (11.4-12.5 m/s), narrower than any useful shape
 parameter in W; in T(W) that band is the maximum of one coordinate.
 """
+
 from __future__ import annotations
 
 import sys
@@ -54,8 +55,9 @@ def validation_r(results: str, ms: str, cases0: xr.Dataset, ws: np.ndarray, ct: 
             X = np.column_stack([x, thrust])
             m_, l_, s_ = np.r_[mask, False], np.r_[lo, 0.0], np.r_[span, tmax / w]
         t = time.time()
-        m = rbf.fit_rbf(X[tr], y[tr], is_direction=m_, log_output=isd, shapes=grid, smoothing=st.smoothing,
-                        lo=l_, span=s_)
+        m = rbf.fit_rbf(
+            X[tr], y[tr], is_direction=m_, log_output=isd, shapes=grid, smoothing=st.smoothing, lo=l_, span=s_
+        )
         res[name] = lc.validation_metrics(rbf.predict_rbf(m, X[va]), y[va])["r"]
         print(ms, name, "%.0f s" % (time.time() - t), flush=True)
     return [lc._label(c) for c in cols], res
@@ -71,8 +73,8 @@ def main(argv: list[str]) -> int:
         for j, lab in enumerate(labels):
             if "_tn" in lab:
                 continue
-            print("  ", lab.ljust(16), *["%.4f" % res[k][j] for k in res])
-        print("   min", *["%.4f" % res[k].min() for k in res], "mean", *["%.4f" % res[k].mean() for k in res])
+            print("  ", lab.ljust(16), *[f"{res[k][j]:.4f}" for k in res])
+        print("   min", *[f"{res[k].min():.4f}" for k in res], "mean", *[f"{res[k].mean():.4f}" for k in res])
     return 0
 
 

@@ -154,8 +154,9 @@ def clipped_tp(
     with np.errstate(invalid="ignore"):
         lowest = np.maximum(tp_floor, np.sqrt(np.where(ok, h, 0.0) / (G_OVER_2PI * max_steepness)))
     # the square root may round a hair below the limit: nudge up to the next float
-    lowest = np.where(np.where(ok, h, 0.0) / (G_OVER_2PI * lowest * lowest) > max_steepness,
-                      np.nextafter(lowest, np.inf), lowest)
+    lowest = np.where(
+        np.where(ok, h, 0.0) / (G_OVER_2PI * lowest * lowest) > max_steepness, np.nextafter(lowest, np.inf), lowest
+    )
     return np.where(ok, np.maximum(t, lowest), t)
 
 

@@ -57,9 +57,7 @@ def _fill_defaults(instance: Any, schema: Mapping[str, Any]) -> Any:
     return instance
 
 
-def validate_config(
-    config: Mapping[str, Any], schema: Mapping[str, Any], source: str = "config"
-) -> dict[str, Any]:
+def validate_config(config: Mapping[str, Any], schema: Mapping[str, Any], source: str = "config") -> dict[str, Any]:
     """Validate a configuration and fill in the schema defaults.
 
     Parameters
@@ -157,6 +155,7 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
     ConfigError
         Naming the source, the key(s) and the value(s).
     """
+
     def fail(msg: str) -> None:
         raise ConfigError(f"{source}: {msg}")
 
@@ -165,13 +164,17 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
         t0 = _timestamp(cfg, "hindcast.start", source)
         t1 = _timestamp(cfg, "hindcast.end", source)
         if t1 < t0:
-            fail(f"config key 'hindcast.end' = {_get(cfg, 'hindcast.end')!r} is before 'hindcast.start' = "
-                 f"{_get(cfg, 'hindcast.start')!r}")
+            fail(
+                f"config key 'hindcast.end' = {_get(cfg, 'hindcast.end')!r} is before 'hindcast.start' = "
+                f"{_get(cfg, 'hindcast.start')!r}"
+            )
         hours = int((t1 - t0) / _hour()) + 1
         n_tr, n_va = _get(cfg, "selection.n_train"), _get(cfg, "selection.n_validate")
         if isinstance(n_tr, int) and isinstance(n_va, int) and n_tr + n_va > hours:
-            fail(f"config keys 'selection.n_train' = {n_tr} + 'selection.n_validate' = {n_va} sea states exceed the "
-                 f"{hours} hour(s) of the study period hindcast.start .. hindcast.end")
+            fail(
+                f"config keys 'selection.n_train' = {n_tr} + 'selection.n_validate' = {n_va} sea states exceed the "
+                f"{hours} hour(s) of the study period hindcast.start .. hindcast.end"
+            )
     if _get(cfg, "hindcast.source") == "file" and not _get(cfg, "hindcast.path"):
         fail("config key 'hindcast.path' = None: a path is required when 'hindcast.source' is 'file'")
     if _get(cfg, "hydro.source") == "wamit" and not _get(cfg, "hydro.wamit_prefix"):
@@ -182,8 +185,10 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
 
         st = hs / (G_OVER_2PI * tp * tp)
         if st > BREAKING_STEEPNESS or tp < TP_FLOOR:
-            fail(f"config keys 'lifecycle.sensitivity.sea_state.hs' = {hs!r}, '.tp' = {tp!r}: not a possible sea state "
-                 f"(steepness Hs / (1.56 Tp^2) = {st:.3g}, breaking limit 1/7; Tp floor {TP_FLOOR:g} s)")
+            fail(
+                f"config keys 'lifecycle.sensitivity.sea_state.hs' = {hs!r}, '.tp' = {tp!r}: not a possible sea state "
+                f"(steepness Hs / (1.56 Tp^2) = {st:.3g}, breaking limit 1/7; Tp floor {TP_FLOOR:g} s)"
+            )
 
     # ------------------------------------------------------------------ time steps
     dt = _get(cfg, "simulation.dt")
@@ -192,33 +197,48 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
         if isinstance(w_max, (int, float)) and w_max > 0:
             t_min = 2.0 * math.pi / w_max
             if dt > t_min / STEPS_PER_PERIOD * (1 + 1e-9):
-                fail(f"config key 'simulation.dt' = {dt!r} s cannot resolve the shortest wave period, 2 pi / "
-                     f"'hydro.omega.max' = 2 pi / {w_max!r} = {t_min:.3g} s: the integrator needs "
-                     f"{STEPS_PER_PERIOD} steps per period, dt <= {t_min / STEPS_PER_PERIOD:.3g} s")
+                fail(
+                    f"config key 'simulation.dt' = {dt!r} s cannot resolve the shortest wave period, 2 pi / "
+                    f"'hydro.omega.max' = 2 pi / {w_max!r} = {t_min:.3g} s: the integrator needs "
+                    f"{STEPS_PER_PERIOD} steps per period, dt <= {t_min / STEPS_PER_PERIOD:.3g} s"
+                )
         kin = _get(cfg, "simulation.kinematics_dt")
         if isinstance(kin, (int, float)) and kin > 0 and isinstance(w_max, (int, float)) and w_max > 0:
             t_min = 2.0 * math.pi / w_max
             step = max(1, int(round(kin / dt))) * dt  # the simulator samples every k-th step
             if step > t_min / KINEMATICS_PER_PERIOD * (1 + 1e-9):
-                fail(f"config key 'simulation.kinematics_dt' = {kin!r} s (sampled every {step:g} s with "
-                     f"'simulation.dt' = {dt!r} s) samples the shortest wave period 2 pi / 'hydro.omega.max' = "
-                     f"{t_min:.3g} s fewer than {KINEMATICS_PER_PERIOD} times: the step must be <= "
-                     f"{t_min / KINEMATICS_PER_PERIOD:.3g} s")
-        block, dur, tr = _get(cfg, "statistics.block"), _get(cfg, "simulation.duration"), _get(cfg, "simulation.transient")
+                fail(
+                    f"config key 'simulation.kinematics_dt' = {kin!r} s (sampled every {step:g} s with "
+                    f"'simulation.dt' = {dt!r} s) samples the shortest wave period 2 pi / 'hydro.omega.max' = "
+                    f"{t_min:.3g} s fewer than {KINEMATICS_PER_PERIOD} times: the step must be <= "
+                    f"{t_min / KINEMATICS_PER_PERIOD:.3g} s"
+                )
+        block, dur, tr = (
+            _get(cfg, "statistics.block"),
+            _get(cfg, "simulation.duration"),
+            _get(cfg, "simulation.transient"),
+        )
         if isinstance(block, (int, float)) and isinstance(dur, (int, float)) and block > 0 and dur > 0:
             ns = int(round(block / dt))
             if ns < 2:
-                fail(f"config key 'statistics.block' = {block!r} s is shorter than two steps of 'simulation.dt' = {dt!r} s")
+                fail(
+                    f"config key 'statistics.block' = {block!r} s is shorter than two steps of 'simulation.dt' = {dt!r} s"
+                )
             tr = float(tr or 0.0)
             kept = int(math.ceil((dur + tr) / dt - 1e-9)) - int(round(tr / dt))
             if kept // ns < MIN_BLOCKS:
-                fail(f"config key 'statistics.block' = {block!r} s: the kept record 'simulation.duration' = {dur!r} s "
-                     f"holds {kept // ns} block(s); the GEV fit needs at least {MIN_BLOCKS}: statistics.block <= "
-                     f"{dur / MIN_BLOCKS:g} s")
+                fail(
+                    f"config key 'statistics.block' = {block!r} s: the kept record 'simulation.duration' = {dur!r} s "
+                    f"holds {kept // ns} block(s); the GEV fit needs at least {MIN_BLOCKS}: statistics.block <= "
+                    f"{dur / MIN_BLOCKS:g} s"
+                )
 
     # ------------------------------------------------------------------ ordered pairs, grids, lists
-    for lo_key, hi_key in (("hydro.omega.min", "hydro.omega.max"), ("lifecycle.rbf.grid.min", "lifecycle.rbf.grid.max"),
-                           ("hindcast.synthetic.tp_min", "hindcast.synthetic.tp_max")):
+    for lo_key, hi_key in (
+        ("hydro.omega.min", "hydro.omega.max"),
+        ("lifecycle.rbf.grid.min", "lifecycle.rbf.grid.max"),
+        ("hindcast.synthetic.tp_min", "hindcast.synthetic.tp_max"),
+    ):
         lo, hi = _get(cfg, lo_key), _get(cfg, hi_key)
         if isinstance(lo, (int, float)) and isinstance(hi, (int, float)) and not lo < hi:
             fail(f"config key '{lo_key}' = {lo!r} must be below '{hi_key}' = {hi!r}")
@@ -231,16 +251,26 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
         if isinstance(w, (int, float)) and w > 0 and abs(360.0 / w - round(360.0 / w)) > 1e-9:
             fail(f"config key '{key}' = {w!r} deg must divide 360")
     groups = (
-        ("hindcast.synthetic.wind", ("regime_directions", "regime_spreads", "regime_probabilities",
-                                     "regime_seasonal_amplitudes", "regime_speed_factors")),
+        (
+            "hindcast.synthetic.wind",
+            (
+                "regime_directions",
+                "regime_spreads",
+                "regime_probabilities",
+                "regime_seasonal_amplitudes",
+                "regime_speed_factors",
+            ),
+        ),
         ("hindcast.synthetic.wind_sea", ("fetch_directions", "fetch_km")),
     )
     for prefix, keys in groups:
         lists = {k: _get(cfg, f"{prefix}.{k}") for k in keys}
         sizes = {k: len(v) for k, v in lists.items() if isinstance(v, list)}
         if len(set(sizes.values())) > 1:
-            fail(f"config keys {', '.join(f'{prefix}.{k} ({n} values)' for k, n in sizes.items())} must have "
-                 "the same length (one value per regime or direction)")
+            fail(
+                f"config keys {', '.join(f'{prefix}.{k} ({n} values)' for k, n in sizes.items())} must have "
+                "the same length (one value per regime or direction)"
+            )
 
 
 def check_against_table(

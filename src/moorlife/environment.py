@@ -382,9 +382,7 @@ def synthesise_complex(coeff: np.ndarray, index: np.ndarray, grid: RecordGrid, *
     return scipy.fft.fft(spec, axis=-1)[..., :n]
 
 
-def wind_series(
-    grid: RecordGrid, u_hub: npt.ArrayLike, phases: np.ndarray, cfg: dict
-) -> np.ndarray:
+def wind_series(grid: RecordGrid, u_hub: npt.ArrayLike, phases: np.ndarray, cfg: dict) -> np.ndarray:
     """Turbulent hub-height longitudinal wind speed of a batch of sea states.
 
     Parameters

@@ -133,7 +133,14 @@ SIM_EXTRA_SCALAR_VARS: tuple[str, ...] = (
 SIM_EXTRA_LINE_VARS: tuple[str, ...] = ("tension_mean", "tension_std", "tension_max")
 #: Time series kept when ``simulation.keep_timeseries`` is true: (B, nt) or (B, 3, nt).
 SIM_TIMESERIES_VARS: tuple[str, ...] = (
-    "ts_surge", "ts_sway", "ts_heave", "ts_roll", "ts_pitch", "ts_yaw", "ts_accel", "ts_tension",
+    "ts_surge",
+    "ts_sway",
+    "ts_heave",
+    "ts_roll",
+    "ts_pitch",
+    "ts_yaw",
+    "ts_accel",
+    "ts_tension",
 )
 SIM_EXTRA_ATTRS: dict[str, dict[str, str]] = {
     "surge_mean": {"units": "m", "long_name": "mean surge offset"},

@@ -112,15 +112,38 @@ def _openssl_security(folder: Path) -> Any:
 
     key, cert = folder / "key.pem", folder / "cert.pem"
     subprocess.run(
-        ["openssl", "req", "-x509", "-newkey", "ec", "-pkeyopt", "ec_paramgen_curve:prime256v1", "-nodes",
-         "-keyout", str(key), "-out", str(cert), "-days", "7", "-subj", "/CN=moorlife-dask"],
-        check=True, capture_output=True, timeout=60,
+        [
+            "openssl",
+            "req",
+            "-x509",
+            "-newkey",
+            "ec",
+            "-pkeyopt",
+            "ec_paramgen_curve:prime256v1",
+            "-nodes",
+            "-keyout",
+            str(key),
+            "-out",
+            str(cert),
+            "-days",
+            "7",
+            "-subj",
+            "/CN=moorlife-dask",
+        ],
+        check=True,
+        capture_output=True,
+        timeout=60,
     )
     os.chmod(key, 0o600)
     return Security(
-        tls_ca_file=str(cert), tls_client_cert=str(cert), tls_client_key=str(key),
-        tls_scheduler_cert=str(cert), tls_scheduler_key=str(key),
-        tls_worker_cert=str(cert), tls_worker_key=str(key), require_encryption=True,
+        tls_ca_file=str(cert),
+        tls_client_cert=str(cert),
+        tls_client_key=str(key),
+        tls_scheduler_cert=str(cert),
+        tls_scheduler_key=str(key),
+        tls_worker_cert=str(cert),
+        tls_worker_key=str(key),
+        require_encryption=True,
     )
 
 
@@ -191,8 +214,9 @@ def dask_client(threads: int = 1, *, address: str | None = None) -> Iterator[Any
     if address:
         check_scheduler_address(address)
         if not address.startswith("tls://"):
-            _log.warning("the Dask scheduler at %s is not TLS-secured: anyone who can reach it can run code on it",
-                         address)
+            _log.warning(
+                "the Dask scheduler at %s is not TLS-secured: anyone who can reach it can run code on it", address
+            )
         _log.info("joining the Dask scheduler at %s", address)
         with Client(address, timeout="60s", security=Security()) as client:
             yield client
@@ -201,20 +225,28 @@ def dask_client(threads: int = 1, *, address: str | None = None) -> Iterator[Any
     n = max(1, int(threads))
     env = {k: "1" for k in BLAS_ENV}
     try:
-        with temporary_security() as security, LocalCluster(
-            n_workers=n,
-            threads_per_worker=1,
-            processes=True,
-            host="127.0.0.1",
-            protocol="tls://",
-            security=security,
-            scheduler_port=0,
-            dashboard_address="127.0.0.1:0",
-            silence_logs=logging.WARNING,
-            env=env,
-        ) as cluster, Client(cluster, security=security) as client:
-            _log.info("LocalCluster (TLS) with %d worker(s) at %s, dashboard %s", n, cluster.scheduler_address,
-                      client.dashboard_link)
+        with (
+            temporary_security() as security,
+            LocalCluster(
+                n_workers=n,
+                threads_per_worker=1,
+                processes=True,
+                host="127.0.0.1",
+                protocol="tls://",
+                security=security,
+                scheduler_port=0,
+                dashboard_address="127.0.0.1:0",
+                silence_logs=logging.WARNING,
+                env=env,
+            ) as cluster,
+            Client(cluster, security=security) as client,
+        ):
+            _log.info(
+                "LocalCluster (TLS) with %d worker(s) at %s, dashboard %s",
+                n,
+                cluster.scheduler_address,
+                client.dashboard_link,
+            )
             yield client
     finally:
         restore_env(old)
@@ -242,8 +274,12 @@ def dataset_digest(ds: xr.Dataset) -> str:
     return h.hexdigest()
 
 
-def _run_batch(func: Callable[..., Mapping[str, np.ndarray]], kwargs: Mapping[str, Any],
-               case_vars: Mapping[str, np.ndarray], case_ids: np.ndarray) -> dict[str, np.ndarray]:
+def _run_batch(
+    func: Callable[..., Mapping[str, np.ndarray]],
+    kwargs: Mapping[str, Any],
+    case_vars: Mapping[str, np.ndarray],
+    case_ids: np.ndarray,
+) -> dict[str, np.ndarray]:
     out = func(dict(case_vars), case_ids=case_ids, **kwargs)
     return {k: np.asarray(v) for k, v in out.items()}
 
@@ -332,8 +368,14 @@ def map_batches(
                 failure = failure or exc
                 continue
             sink.write(b, result)
-            log.info("batch %d/%d done (%d of %d this run, %.1f s)", b + 1, len(slices), k, len(todo),
-                     time.perf_counter() - t0)
+            log.info(
+                "batch %d/%d done (%d of %d this run, %.1f s)",
+                b + 1,
+                len(slices),
+                k,
+                len(todo),
+                time.perf_counter() - t0,
+            )
             fut.release()
         if failure is not None:
             raise failure

@@ -192,8 +192,12 @@ class WindSettings:
 
     def as_dict(self) -> dict[str, Any]:
         """The section as a plain mapping (what :mod:`moorlife.environment` takes)."""
-        return {"spectrum": self.spectrum, "turbulence_intensity": self.turbulence_intensity,
-                "length_scale": self.length_scale, "f_max": self.f_max}
+        return {
+            "spectrum": self.spectrum,
+            "turbulence_intensity": self.turbulence_intensity,
+            "length_scale": self.length_scale,
+            "f_max": self.f_max,
+        }
 
 
 @dataclass(frozen=True)

@@ -83,9 +83,7 @@ def check_points(points: npt.ArrayLike, is_direction: npt.ArrayLike) -> tuple[np
         raise ValueError("points is empty: no sea states to select from")
     mask = np.asarray(is_direction, dtype=bool).reshape(-1)
     if mask.shape[0] != pts.shape[1]:
-        raise ValueError(
-            f"is_direction has {mask.shape[0]} entries but points have {pts.shape[1]} columns"
-        )
+        raise ValueError(f"is_direction has {mask.shape[0]} entries but points have {pts.shape[1]} columns")
     bad = ~np.isfinite(pts)
     if bad.any():
         row, col = np.argwhere(bad)[0]
@@ -226,7 +224,6 @@ def nearest_distance(
     return out
 
 
-
 # --------------------------------------------------------------------------- Space
 @dataclass(frozen=True)
 class Space:
@@ -337,7 +334,9 @@ def as_points(points: npt.ArrayLike) -> np.ndarray:
 
 # --------------------------------------------------------------------------- kernels
 @nb.njit(parallel=True, cache=True)
-def sq_dist_block(zq: np.ndarray, zc_t: np.ndarray, isdir: np.ndarray, out: np.ndarray) -> None:  # pragma: no cover - numba
+def sq_dist_block(
+    zq: np.ndarray, zc_t: np.ndarray, isdir: np.ndarray, out: np.ndarray
+) -> None:  # pragma: no cover - numba
     """Squared normalised distances into ``out`` (n, m): ``zq`` (n, d), ``zc_t`` (d, m), ``isdir`` (d,)."""
     n, d = zq.shape
     m = zc_t.shape[1]
@@ -358,7 +357,9 @@ def sq_dist_block(zq: np.ndarray, zc_t: np.ndarray, isdir: np.ndarray, out: np.n
 
 
 @nb.njit(parallel=True, cache=True)
-def nearest_block(zq: np.ndarray, zc_t: np.ndarray, isdir: np.ndarray, dmin: np.ndarray, imin: np.ndarray) -> None:  # pragma: no cover - numba
+def nearest_block(
+    zq: np.ndarray, zc_t: np.ndarray, isdir: np.ndarray, dmin: np.ndarray, imin: np.ndarray
+) -> None:  # pragma: no cover - numba
     """Distance ``dmin`` (n,) to, and index ``imin`` (n,) of, the nearest column of ``zc_t`` (d, m)."""
     n, d = zq.shape
     m = zc_t.shape[1]

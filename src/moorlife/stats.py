@@ -356,9 +356,7 @@ def gev_mpm(
     return mpm, fit_correlation(maxima, p)
 
 
-def gev_mpm_xr(
-    x: Any, *, dim: str = "t", block: float, duration: float | None = None, method: str = "lmoments"
-) -> Any:
+def gev_mpm_xr(x: Any, *, dim: str = "t", block: float, duration: float | None = None, method: str = "lmoments") -> Any:
     """xarray adapter of :func:`gev_mpm`.
 
     Parameters

@@ -108,20 +108,28 @@ def check_window(
     h0 = _timestamp(hindcast_start, "hindcast.start", source)
     h1 = _timestamp(hindcast_end, "hindcast.end", source)
     if t1 < t0:
-        raise ValueError(f"{source}: config key 'truth.window.end' = {end!r} is before truth.window.start = "
-                         f"{start!r}: the truth window is empty")
+        raise ValueError(
+            f"{source}: config key 'truth.window.end' = {end!r} is before truth.window.start = "
+            f"{start!r}: the truth window is empty"
+        )
     if t0 < h0 or t0 > h1:
-        raise ValueError(f"{source}: config key 'truth.window.start' = {start!r} is outside the hindcast "
-                         f"{hindcast_start} .. {hindcast_end} (hindcast.start/end)")
+        raise ValueError(
+            f"{source}: config key 'truth.window.start' = {start!r} is outside the hindcast "
+            f"{hindcast_start} .. {hindcast_end} (hindcast.start/end)"
+        )
     if t1 > h1:
-        raise ValueError(f"{source}: config key 'truth.window.end' = {end!r} is outside the hindcast "
-                         f"{hindcast_start} .. {hindcast_end} (hindcast.start/end)")
+        raise ValueError(
+            f"{source}: config key 'truth.window.end' = {end!r} is outside the hindcast "
+            f"{hindcast_start} .. {hindcast_end} (hindcast.start/end)"
+        )
     hours = h0.to_datetime64() + np.arange(int((h1 - h0) / pd.Timedelta(hours=1)) + 1) * _HOUR
     n = window_indices(hours, t0.to_datetime64(), t1.to_datetime64(), int(stride), source=source).size
     n2 = int(n_second_seed)
     if n2 > n:
-        raise ValueError(f"{source}: config key 'truth.n_second_seed' = {n_second_seed!r} is larger than the "
-                         f"{n} hours of the truth window")
+        raise ValueError(
+            f"{source}: config key 'truth.n_second_seed' = {n_second_seed!r} is larger than the "
+            f"{n} hours of the truth window"
+        )
     return n
 
 
@@ -154,8 +162,9 @@ def window_indices(
     t = np.asarray(times, dtype="datetime64[ns]")
     inside = np.flatnonzero((t >= np.datetime64(start, "ns")) & (t <= np.datetime64(end, "ns")))
     if inside.size == 0:
-        raise ValueError(f"{source}: no hour of the hindcast lies in the truth window {start} .. {end} "
-                         "(truth.window.start/end)")
+        raise ValueError(
+            f"{source}: no hour of the hindcast lies in the truth window {start} .. {end} (truth.window.start/end)"
+        )
     return inside[:: int(stride)].astype(np.int64)
 
 
@@ -233,10 +242,14 @@ def hour_bins(
         If an hour falls in a class that is not one of the bins (it was not in the hindcast
         the bins were made from), or below the first edge.
     """
-    e = [selection.check_edges(v, k) for v, k in ((hs_edges, "hs_edges"), (wind_edges, "wind_edges"),
-                                                   (tp_edges, "tp_edges"))]
-    cls = [selection.classify(np.asarray(a, dtype=float).reshape(-1), ee, name)
-           for a, ee, name in ((hs, e[0], "hs"), (wind_speed, e[1], "wind_speed"), (tp, e[2], "tp"))]
+    e = [
+        selection.check_edges(v, k)
+        for v, k in ((hs_edges, "hs_edges"), (wind_edges, "wind_edges"), (tp_edges, "tp_edges"))
+    ]
+    cls = [
+        selection.classify(np.asarray(a, dtype=float).reshape(-1), ee, name)
+        for a, ee, name in ((hs, e[0], "hs"), (wind_speed, e[1], "wind_speed"), (tp, e[2], "tp"))
+    ]
     shape = tuple(ee.size for ee in e)
     flat = np.ravel_multi_index(tuple(cls), shape)
     bc = np.asarray(bin_classes, dtype=np.int64).reshape(-1, 3)
@@ -245,8 +258,10 @@ def hour_bins(
     out = lookup[flat]
     if (out < 0).any():
         i = int(np.flatnonzero(out < 0)[0])
-        raise ValueError(f"hour {i} (hs {float(np.ravel(hs)[i])!r}, wind_speed {float(np.ravel(wind_speed)[i])!r}, "
-                         f"tp {float(np.ravel(tp)[i])!r}) falls in a class with no bin of the scatter matrix")
+        raise ValueError(
+            f"hour {i} (hs {float(np.ravel(hs)[i])!r}, wind_speed {float(np.ravel(wind_speed)[i])!r}, "
+            f"tp {float(np.ravel(tp)[i])!r}) falls in a class with no bin of the scatter matrix"
+        )
     return out
 
 
@@ -358,13 +373,16 @@ def compare_window(
     idx = np.asarray(truth["hindcast_index"].values, dtype=np.int64)
     n_time = reconstruction.sizes[names.TIME]
     if idx.size == 0 or idx.min() < 0 or idx.max() >= n_time:
-        raise ValueError(f"truth hours' hindcast_index span {idx.min()}..{idx.max()} is outside the "
-                         f"reconstruction's {n_time} hours")
+        raise ValueError(
+            f"truth hours' hindcast_index span {idx.min()}..{idx.max()} is outside the reconstruction's {n_time} hours"
+        )
     rec = reconstruction.isel({names.TIME: idx})
     for v in names.METOCEAN_VARS:  # the truth hours are the reconstruction's hours
         if v in rec and not np.allclose(rec[v].values, truth[v].values, rtol=1e-6, atol=1e-9):
-            raise ValueError(f"truth.zarr and lifecycle.zarr disagree on {v} at the same hindcast hours: "
-                             "built from different hindcasts")
+            raise ValueError(
+                f"truth.zarr and lifecycle.zarr disagree on {v} at the same hindcast hours: "
+                "built from different hindcasts"
+            )
     cols = [col for col in lifecycle.output_columns(truth, c, outputs) if col[0] in reconstruction]
     labels = [lifecycle._label(col) for col in cols]
     y_true = lifecycle.stack_outputs(truth, c, cols)
@@ -375,9 +393,12 @@ def compare_window(
     if names.TIME in rec.coords:
         hour_coords[names.TIME] = ("hour", rec[names.TIME].values)
     out = xr.Dataset(coords={"output": labels, **hour_coords})
-    for k, text in (("r", "Pearson r of reconstruction and truth over the window's hours"),
-                    ("rmse", "RMSE of reconstruction - truth"), ("bias", "mean of reconstruction - truth"),
-                    ("sum_error", "reconstruction sum / truth sum - 1")):
+    for k, text in (
+        ("r", "Pearson r of reconstruction and truth over the window's hours"),
+        ("rmse", "RMSE of reconstruction - truth"),
+        ("bias", "mean of reconstruction - truth"),
+        ("sum_error", "reconstruction sum / truth sum - 1"),
+    ):
         out[k] = ("output", agree[k], _a(text))
     out["truth"] = (("hour", "output"), y_true, _a("simulated truth of each output at each window hour"))
     out["reconstruction"] = (("hour", "output"), y_rec, _a("reconstructed value (lifecycle.zarr) at each window hour"))
@@ -396,8 +417,15 @@ def compare_window(
     if curves:
         a = discrete_states.attrs
         classes = np.column_stack([discrete_states[f"{ax}_class"].values for ax in ("hs", "wind", "tp")])
-        bins = hour_bins(truth["hs"].values, truth["wind_speed"].values, truth["tp"].values, hs_edges=a["hs_edges"],
-                         wind_edges=a["wind_edges"], tp_edges=a["tp_edges"], bin_classes=classes)
+        bins = hour_bins(
+            truth["hs"].values,
+            truth["wind_speed"].values,
+            truth["tp"].values,
+            hs_edges=a["hs_edges"],
+            wind_edges=a["wind_edges"],
+            tp_edges=a["tp_edges"],
+            bin_classes=classes,
+        )
         lines = [str(v) for v in truth[names.LINE].values]
         b = names.BIN
         sims = discrete_sims.sel({b: discrete_states[b].values})
@@ -417,22 +445,41 @@ def compare_window(
         out["bin"] = ("hour", bins, _a("scatter-matrix bin of each window hour (results/selection/discrete.zarr)"))
         t_tot, r_tot, b_tot = (np.stack(tot[k]) for k in ("truth", "rec", "bins"))
         out["truth_damage"] = (cd, t_tot, _a(f"damage summed over the {idx.size} truth hours (simulated)"))
-        out["reconstruction_damage"] = (cd, r_tot, _a("damage summed over the truth hours (lifecycle.zarr, clipped at 0)"))
+        out["reconstruction_damage"] = (
+            cd,
+            r_tot,
+            _a("damage summed over the truth hours (lifecycle.zarr, clipped at 0)"),
+        )
         out["bins_damage"] = (cd, b_tot, _a("35-bin method: window hours in each bin x the bin's hourly damage"))
-        out["reconstruction_error_pct"] = (cd, signed_error_pct(r_tot, t_tot), _a("100 (reconstruction - truth) / truth", "%"))
+        out["reconstruction_error_pct"] = (
+            cd,
+            signed_error_pct(r_tot, t_tot),
+            _a("100 (reconstruction - truth) / truth", "%"),
+        )
         out["bins_error_pct"] = (cd, signed_error_pct(b_tot, t_tot), _a("100 (bins - truth) / truth", "%"))
         hcd = (names.CURVE, "hour", names.LINE)
-        for key, arr, text in (("truth_cumulative", t_h, "cumulative truth damage"),
-                               ("reconstruction_cumulative", r_h, "cumulative reconstructed damage"),
-                               ("bins_cumulative", b_h, "cumulative 35-bin damage")):
+        for key, arr, text in (
+            ("truth_cumulative", t_h, "cumulative truth damage"),
+            ("reconstruction_cumulative", r_h, "cumulative reconstructed damage"),
+            ("bins_cumulative", b_h, "cumulative 35-bin damage"),
+        ):
             out[key] = (hcd, np.cumsum(np.stack(arr), axis=1), _a(text))
         if noise is not None:
             pos_of = {lab: j for j, lab in enumerate(labels)}
-            for key, text in (("sum_std_pct", "seed scatter (1 sd) of the window's damage sum, % of the sum"),
-                              ("sum_difference_pct", "100 (seed2 - seed1) / seed1 of the damage sum over the seed2 hours")):
-                vals = np.array([[noise[key][pos_of[f"{lifecycle.DAMAGE_VARS[cv]}/{ln}"]] for ln in lines] for cv in curves])
+            for key, text in (
+                ("sum_std_pct", "seed scatter (1 sd) of the window's damage sum, % of the sum"),
+                ("sum_difference_pct", "100 (seed2 - seed1) / seed1 of the damage sum over the seed2 hours"),
+            ):
+                vals = np.array(
+                    [[noise[key][pos_of[f"{lifecycle.DAMAGE_VARS[cv]}/{ln}"]] for ln in lines] for cv in curves]
+                )
                 out[f"seed_{key}"] = (cd, vals, _a(text, "%"))
-    out.attrs.update({"n_hours": int(idx.size), "n_seed2": int(0 if noise is None else out.sizes["seed2_hour"]),
-                      "mooring_system": str(truth.attrs.get("mooring_system", "")),
-                      "random_stream": str(truth.attrs.get("random_stream", ""))})
+    out.attrs.update(
+        {
+            "n_hours": int(idx.size),
+            "n_seed2": int(0 if noise is None else out.sizes["seed2_hour"]),
+            "mooring_system": str(truth.attrs.get("mooring_system", "")),
+            "random_stream": str(truth.attrs.get("random_stream", "")),
+        }
+    )
     return out

@@ -48,7 +48,9 @@ def ct_table(turbine_cfg: Mapping, source: str = "platform.yaml") -> tuple[np.nd
     ws = np.asarray(tab["wind_speed"], dtype=float)
     ct = np.asarray(tab["ct"], dtype=float)
     if ws.ndim != 1 or ws.shape != ct.shape or ws.size < 2:
-        raise ValueError(f"{source}: turbine.ct_table: wind_speed ({ws.size}) and ct ({ct.size}) must be equal-length lists of >= 2")
+        raise ValueError(
+            f"{source}: turbine.ct_table: wind_speed ({ws.size}) and ct ({ct.size}) must be equal-length lists of >= 2"
+        )
     bad = np.flatnonzero(~np.isfinite(ct) | (ct < 0))
     if bad.size:
         raise ValueError(f"{source}: turbine.ct_table.ct[{bad[0]}] = {ct[bad[0]]:g} must be finite and >= 0")

@@ -11,11 +11,7 @@ from moorlife.stages import result_settings
 
 # Validate before any work: unknown keys, wrong types and bad values stop here, naming the key.
 _cfg_sources = ", ".join(str(f) for f in workflow.configfiles) or "config"
-config.update(
-    validate_config(
-        config, read_yaml(workflow.source_path("../schemas/config.schema.yaml")), _cfg_sources
-    )
-)
+config.update(validate_config(config, read_yaml(workflow.source_path("../schemas/config.schema.yaml")), _cfg_sources))
 MOORING = read_mooring_systems(config["mooring_systems"])
 MS_IDS = list(MOORING.index)
 check_against_table(config, MS_IDS, _cfg_sources, dict(MOORING["link_diameter_mm"]))
@@ -69,8 +65,15 @@ def truth_checked_hindcast(wildcards):
     from moorlife.truth import check_window
 
     t, h = config["truth"], config["hindcast"]
-    check_window(t["window"]["start"], t["window"]["end"], t["stride"], t["n_second_seed"],
-                 hindcast_start=h["start"], hindcast_end=h["end"], source=_cfg_sources)
+    check_window(
+        t["window"]["start"],
+        t["window"]["end"],
+        t["stride"],
+        t["n_second_seed"],
+        hindcast_start=h["start"],
+        hindcast_end=h["end"],
+        source=_cfg_sources,
+    )
     return "results/metocean/hindcast.zarr"
 
 

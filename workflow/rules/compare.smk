@@ -17,14 +17,14 @@ rule compare:
             category="Comparison",
         ),
         recommendation="results/comparison/recommendation.yaml",
+    log:
+        "logs/comparison/compare.log",
+    conda:
+        "../../envs/moorlife.yaml"
     params:
         systems=MS_IDS,
         lifecycle=result_settings(config, "lifecycle"),
         fatigue=config["fatigue"],
-    conda:
-        "../../envs/moorlife.yaml"
-    log:
-        "logs/comparison/compare.log",
     script:
         "../scripts/compare.py"
 
@@ -55,11 +55,11 @@ rule compare_figures:
             caption="../report/recommendation.rst",
             category="Comparison",
         ),
-    params:
-        systems=MS_IDS,
-    conda:
-        "../../envs/moorlife.yaml"
     log:
         "logs/comparison/compare_figures.log",
+    conda:
+        "../../envs/moorlife.yaml"
+    params:
+        systems=MS_IDS,
     script:
         "../scripts/compare_figures.py"

@@ -11,14 +11,14 @@ rule hydro:
         _hydro_inputs,
     output:
         store="results/hydro/platform.nc",
-    params:
-        bem=bem_settings(config["hydro"], read_platform_config(config["platform"])),
+    log:
+        "logs/hydro/platform.log",
+    conda:
+        "../../envs/moorlife.yaml"
     threads: 2
     resources:
         mem_mb=2000,
-    conda:
-        "../../envs/moorlife.yaml"
-    log:
-        "logs/hydro/platform.log",
+    params:
+        bem=bem_settings(config["hydro"], read_platform_config(config["platform"])),
     script:
         "../scripts/hydro.py"

@@ -10,16 +10,16 @@ rule lifecycle:
         simulations="results/{ms}/simulations.zarr",
     output:
         store=directory("results/{ms}/lifecycle.zarr"),
-    params:
-        lifecycle=result_settings(config, "lifecycle"),
-        fatigue=config["fatigue"],
+    log:
+        "logs/{ms}/lifecycle.log",
+    conda:
+        "../../envs/moorlife.yaml"
     threads: 2
     resources:
         mem_mb=2000,
-    conda:
-        "../../envs/moorlife.yaml"
-    log:
-        "logs/{ms}/lifecycle.log",
+    params:
+        lifecycle=result_settings(config, "lifecycle"),
+        fatigue=config["fatigue"],
     script:
         "../scripts/lifecycle.py"
 
@@ -46,9 +46,9 @@ rule lifecycle_figures:
             category="Life cycle",
             subcategory="{ms}",
         ),
-    conda:
-        "../../envs/moorlife.yaml"
     log:
         "logs/{ms}/lifecycle_figures.log",
+    conda:
+        "../../envs/moorlife.yaml"
     script:
         "../scripts/lifecycle_figures.py"

@@ -7,13 +7,13 @@ rule metocean:
         _hindcast_file,
     output:
         store=directory("results/metocean/hindcast.zarr"),
+    log:
+        "logs/metocean/hindcast.log",
+    conda:
+        "../../envs/moorlife.yaml"
     params:
         hindcast=config["hindcast"],
         seed=config["seed"],
-    conda:
-        "../../envs/moorlife.yaml"
-    log:
-        "logs/metocean/hindcast.log",
     script:
         "../scripts/metocean.py"
 
@@ -25,9 +25,9 @@ rule metocean_figures:
         wind_rose=report("results/figures/wind_rose.png", category="Metocean", caption="../report/wind_rose.rst"),
         wave_rose=report("results/figures/wave_rose.png", category="Metocean", caption="../report/wave_rose.rst"),
         hs_tp=report("results/figures/hs_tp_scatter.png", category="Metocean", caption="../report/hs_tp_scatter.rst"),
-    conda:
-        "../../envs/moorlife.yaml"
     log:
         "logs/metocean/figures.log",
+    conda:
+        "../../envs/moorlife.yaml"
     script:
         "../scripts/metocean_figures.py"

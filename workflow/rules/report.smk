@@ -10,9 +10,9 @@ rule report_overview:
         recommendation="results/comparison/recommendation.yaml",
     output:
         "results/report/overview.rst",
-    conda:
-        "../../envs/moorlife.yaml"
     log:
         "logs/report/overview.log",
+    conda:
+        "../../envs/moorlife.yaml"
     script:
         "../scripts/report_overview.py"

@@ -7,17 +7,17 @@ rule selection:
         hindcast="results/metocean/hindcast.zarr",
     output:
         store=directory("results/selection/cases.zarr"),
+    log:
+        "logs/selection/selection.log",
+    conda:
+        "../../envs/moorlife.yaml"
+    resources:
+        mem_mb=1000,
     params:
         n_train=config["selection"]["n_train"],
         n_validate=config["selection"]["n_validate"],
         rule=config["selection"]["validation_rule"],
         seed=config["seed"],
-    resources:
-        mem_mb=1000,
-    conda:
-        "../../envs/moorlife.yaml"
-    log:
-        "logs/selection/selection.log",
     script:
         "../scripts/selection.py"
 
@@ -27,17 +27,17 @@ rule discrete:
         hindcast="results/metocean/hindcast.zarr",
     output:
         store=directory("results/selection/discrete.zarr"),
+    log:
+        "logs/selection/discrete.log",
+    conda:
+        "../../envs/moorlife.yaml"
+    resources:
+        mem_mb=500,
     params:
         hs_edges=config["selection"]["discrete"]["hs_edges"],
         wind_edges=config["selection"]["discrete"]["wind_edges"],
         tp_edges=config["selection"]["discrete"]["tp_edges"],
         sector=config["selection"]["discrete"]["direction_sector"],
-    resources:
-        mem_mb=500,
-    conda:
-        "../../envs/moorlife.yaml"
-    log:
-        "logs/selection/discrete.log",
     script:
         "../scripts/discrete.py"
 
@@ -54,11 +54,11 @@ rule selection_figures:
         discrete_fig=report(
             "results/figures/discrete_states.png", caption="../report/discrete_states.rst", category="Selection"
         ),
-    resources:
-        mem_mb=1000,
-    conda:
-        "../../envs/moorlife.yaml"
     log:
         "logs/selection/figures.log",
+    conda:
+        "../../envs/moorlife.yaml"
+    resources:
+        mem_mb=1000,
     script:
         "../scripts/selection_figures.py"

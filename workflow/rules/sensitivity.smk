@@ -6,14 +6,14 @@
 rule sensitivity_cases:
     output:
         store=directory("results/sensitivity/seed_cases.zarr"),
+    log:
+        "logs/sensitivity/seed_cases.log",
+    conda:
+        "../../envs/moorlife.yaml"
     params:
         sea_state=SENS["sea_state"],
         n_seeds=SENS["n_seeds"],
         case_offset=SENS["case_offset"],
-    conda:
-        "../../envs/moorlife.yaml"
-    log:
-        "logs/sensitivity/seed_cases.log",
     script:
         "../scripts/sensitivity_cases.py"
 
@@ -26,11 +26,11 @@ use rule simulate_cases as sensitivity_seeds with:
         platform_cfg=config["platform"],
     output:
         store=directory("results/sensitivity/seeds.zarr"),
+    log:
+        "logs/sensitivity/seeds.log",
     params:
         ms=SENS_MS,
         row=lambda wc: mooring_row(SENS_MS),
-    log:
-        "logs/sensitivity/seeds.log",
 
 
 rule sensitivity:
@@ -62,14 +62,14 @@ rule sensitivity:
             caption="../report/mean_stress.rst",
             category="Sensitivity",
         ),
+    log:
+        "logs/sensitivity/sensitivity.log",
+    conda:
+        "../../envs/moorlife.yaml"
     params:
         systems=MS_IDS,
         ms=SENS_MS,
         line=SENS["corrosion_line"],
         fatigue=config["fatigue"],
-    conda:
-        "../../envs/moorlife.yaml"
-    log:
-        "logs/sensitivity/sensitivity.log",
     script:
         "../scripts/sensitivity.py"

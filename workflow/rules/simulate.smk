@@ -12,6 +12,11 @@ rule simulate_cases:
         platform_cfg=config["platform"],
     output:
         store=directory("results/{ms}/simulations.zarr"),
+    log:
+        "logs/{ms}/simulate_cases.log",
+    conda:
+        "../../envs/moorlife.yaml"
+    threads: all_cores()
     params:
         dim="case",
         ms=lambda wc: wc.ms,
@@ -21,11 +26,6 @@ rule simulate_cases:
         mooring=config.get("mooring", {}),
         fatigue=config["fatigue"],
         statistics=config.get("statistics", {}),
-    threads: all_cores()
-    conda:
-        "../../envs/moorlife.yaml"
-    log:
-        "logs/{ms}/simulate_cases.log",
     script:
         "../scripts/simulate.py"
 
@@ -37,7 +37,7 @@ use rule simulate_cases as simulate_discrete with:
         platform_cfg=config["platform"],
     output:
         store=directory("results/{ms}/discrete.zarr"),
-    params:
-        dim="bin",
     log:
         "logs/{ms}/simulate_discrete.log",
+    params:
+        dim="bin",

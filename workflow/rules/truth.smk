@@ -11,13 +11,13 @@ rule truth_hours:
         truth_checked_hindcast,
     output:
         directory("results/truth/hours.zarr"),
+    log:
+        "logs/truth/hours.log",
+    conda:
+        "../../envs/moorlife.yaml"
     params:
         window=config["truth"]["window"],
         stride=config["truth"]["stride"],
-    conda:
-        "../../envs/moorlife.yaml"
-    log:
-        "logs/truth/hours.log",
     script:
         "../scripts/truth_hours.py"
 
@@ -27,12 +27,12 @@ rule truth_hours_seed2:
         "results/truth/hours.zarr",
     output:
         directory("results/truth/hours_seed2.zarr"),
-    params:
-        n=config["truth"]["n_second_seed"],
-    conda:
-        "../../envs/moorlife.yaml"
     log:
         "logs/truth/hours_seed2.log",
+    conda:
+        "../../envs/moorlife.yaml"
+    params:
+        n=config["truth"]["n_second_seed"],
     script:
         "../scripts/truth_hours_seed2.py"
 
@@ -44,11 +44,11 @@ use rule simulate_cases as truth_simulate with:
         platform_cfg=config["platform"],
     output:
         store=directory("results/{ms}/truth.zarr"),
+    log:
+        "logs/{ms}/truth_simulate.log",
     params:
         dim="case",
         stream="truth",
-    log:
-        "logs/{ms}/truth_simulate.log",
 
 
 use rule simulate_cases as truth_simulate_seed2 with:
@@ -58,11 +58,11 @@ use rule simulate_cases as truth_simulate_seed2 with:
         platform_cfg=config["platform"],
     output:
         store=directory("results/{ms}/truth_seed2.zarr"),
+    log:
+        "logs/{ms}/truth_simulate_seed2.log",
     params:
         dim="case",
         stream="truth_seed2",
-    log:
-        "logs/{ms}/truth_simulate_seed2.log",
 
 
 rule truth_compare:
@@ -87,13 +87,13 @@ rule truth_compare:
             category="Truth",
             subcategory="{ms}",
         ),
-    params:
-        outputs=config["lifecycle"]["rbf"]["outputs"],
-    resources:
-        mem_mb=2000,
-    conda:
-        "../../envs/moorlife.yaml"
     log:
         "logs/{ms}/truth_compare.log",
+    conda:
+        "../../envs/moorlife.yaml"
+    resources:
+        mem_mb=2000,
+    params:
+        outputs=config["lifecycle"]["rbf"]["outputs"],
     script:
         "../scripts/truth_compare.py"

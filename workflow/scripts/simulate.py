@@ -5,8 +5,14 @@ from moorlife.stages import simulate
 
 def main(smk) -> None:
     # simulation.batch_size is scheduling only: read from the config, not a param (no rerun)
-    simulate.run(**smk.input, **smk.output, **smk.params, log=smk.log[0], threads=smk.threads,
-                 batch_size=smk.config["simulation"]["batch_size"])
+    simulate.run(
+        **smk.input,
+        **smk.output,
+        **smk.params,
+        log=smk.log[0],
+        threads=smk.threads,
+        batch_size=smk.config["simulation"]["batch_size"],
+    )
 
 
 if __name__ == "__main__":

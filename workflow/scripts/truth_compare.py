@@ -7,8 +7,16 @@ from moorlife.stages.truth import run
 def main(smk) -> None:
     with log_to(smk.log[0]):
         i = smk.input
-        run(i.truth, i.seed2, i.lifecycle, i.states, i.discrete, dict(smk.output.items()),
-            compared=smk.params.outputs, mooring_system=smk.wildcards.ms)
+        run(
+            i.truth,
+            i.seed2,
+            i.lifecycle,
+            i.states,
+            i.discrete,
+            dict(smk.output.items()),
+            compared=smk.params.outputs,
+            mooring_system=smk.wildcards.ms,
+        )
 
 
 if __name__ == "__main__":

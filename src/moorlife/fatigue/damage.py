@@ -174,9 +174,7 @@ def hourly_damage(
     ms_n, ms_r = {"none": (0, 1.0), "goodman": (1, ultimate), "soderberg": (1, yield_), "gerber": (2, ultimate)}[
         mean_stress
     ]
-    out_sn, out_tn = _damage_records(
-        flat, area, rbs, sn.a_d, sn.m, tn.k, tn.m, ms_n, float(ms_r), residue == "close"
-    )
+    out_sn, out_tn = _damage_records(flat, area, rbs, sn.a_d, sn.m, tn.k, tn.m, ms_n, float(ms_r), residue == "close")
     if np.any(np.isinf(out_sn)):
         i = int(np.flatnonzero(np.isinf(out_sn))[0])
         rec = tuple(int(v) for v in np.unravel_index(i, lead))

@@ -261,7 +261,11 @@ def life_summary(
         raise ValueError(f"curve must be 'sn' or 'tn', got {curve!r}")
     ratio = adjacent_damage_ratio(d, axis=-1) if d.shape[-1] >= 2 else np.zeros(d.shape[:-1])
     dff = st.design_factor(curve, ratio)
-    mt = None if mean_tension is None else np.moveaxis(np.broadcast_to(mean_tension, np.shape(damage_per_year)), line_axis, -1)
+    mt = (
+        None
+        if mean_tension is None
+        else np.moveaxis(np.broadcast_to(mean_tension, np.shape(damage_per_year)), line_axis, -1)
+    )
     rate_factor = None
     if corrosion and st.corrosion_rate > 0:
         horizon = 0.95 * link_diameter / st.corrosion_rate
@@ -276,11 +280,13 @@ def life_summary(
     if rate_factor is None:
         life_damage = d * st.design_life
     else:
-        _, cum = lifetime_damage_with_corrosion(lambda a: d[None] * rate_factor(a), st.design_life, step=st.corrosion_step)
+        _, cum = lifetime_damage_with_corrosion(
+            lambda a: d[None] * rate_factor(a), st.design_life, step=st.corrosion_step
+        )
         life_damage = cum[-1]
     life = fatigue_life(d, rate_factor=rate_factor, step=st.corrosion_step)
     design_life = fatigue_life(d, design_factor=dff[..., None], rate_factor=rate_factor, step=st.corrosion_step)
-    back = (lambda a: np.moveaxis(a, -1, line_axis))  # noqa: E731
+    back = lambda a: np.moveaxis(a, -1, line_axis)  # noqa: E731
     return {
         "lifecycle_damage": back(life_damage),
         "fatigue_life_years": back(life),

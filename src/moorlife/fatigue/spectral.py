@@ -89,9 +89,7 @@ def dirlik_pdf(ranges: npt.ArrayLike, frequency: npt.ArrayLike, psd: npt.ArrayLi
     return dens / (2.0 * np.sqrt(m0))
 
 
-def dirlik_damage(
-    frequency: npt.ArrayLike, psd: npt.ArrayLike, duration: float, a: float, m: float
-) -> np.ndarray:
+def dirlik_damage(frequency: npt.ArrayLike, psd: npt.ArrayLike, duration: float, a: float, m: float) -> np.ndarray:
     """Dirlik (1985) spectral estimate of rainflow Miner damage of a Gaussian process.
 
     Parameters

@@ -71,8 +71,7 @@ def bem_settings(hydro_cfg: Mapping, platform_cfg: Mapping) -> dict:
     h = HydroSettings.from_config(hydro_cfg, source="config.yaml")
     raw = fill_section("hydro", hydro_cfg, source="config.yaml")  # the omega grid as written
     if h.source == "wamit":  # only the files (rule inputs) and the redimensionalisation
-        return {"source": "wamit", "wamit_prefix": h.wamit_prefix,
-                "environment": dict(platform_cfg["environment"])}
+        return {"source": "wamit", "wamit_prefix": h.wamit_prefix, "environment": dict(platform_cfg["environment"])}
     res = h.mesh_resolution
     sizes = h.panel_size
     if res not in sizes:
@@ -180,8 +179,7 @@ def run_bem(
     # motions (Capytaine convention) and far-field mean drift
     k = wavenumber(omega, water_depth, g)
     xi = motion_rao(omega, mass_matrix, A, B, stiffness, np.conj(F))  # our convention
-    drift = far_field_drift(omega, k, headings, theta, H_dif, H_rad, np.conj(xi),
-                            water_depth=water_depth, rho=rho, g=g)
+    drift = far_field_drift(omega, k, headings, theta, H_dif, H_rad, np.conj(xi), water_depth=water_depth, rho=rho, g=g)
     attrs = {
         "source": f"capytaine {cpt.__version__}",
         "panels": int(body.mesh.nb_faces),
@@ -192,13 +190,24 @@ def run_bem(
         "drift_method": "far-field (Kochin functions, Maruo/Newman), surge sway yaw; heave roll pitch 0",
     }
     return platform_dataset(
-        omega, headings, A, A_inf, B, np.conj(F), C_hydro, drift,
-        water_depth=water_depth, rho=rho, g=g, attrs=attrs,
+        omega,
+        headings,
+        A,
+        A_inf,
+        B,
+        np.conj(F),
+        C_hydro,
+        drift,
+        water_depth=water_depth,
+        rho=rho,
+        g=g,
+        attrs=attrs,
     )
 
 
-def _solve_frequency(body: Any, omega: float, headings: np.ndarray, theta: np.ndarray,
-                     kw: Mapping[str, float]) -> tuple[np.ndarray, ...]:
+def _solve_frequency(
+    body: Any, omega: float, headings: np.ndarray, theta: np.ndarray, kw: Mapping[str, float]
+) -> tuple[np.ndarray, ...]:
     """Radiation (6 dofs) and diffraction (every heading) at one frequency, single-threaded.
 
     Returns ``A (6,6)``, ``B (6,6)``, ``F (nh,6)`` (Capytaine convention), and the Kochin
@@ -219,8 +228,7 @@ def _solve_frequency(body: Any, omega: float, headings: np.ndarray, theta: np.nd
     H_rad = np.zeros((6, theta.size), dtype=complex)
     H_dif = np.zeros((headings.size, theta.size), dtype=complex)
     with threadpool_limits(limits=1):
-        results = cpt.BEMSolver().solve_all(problems, keep_details=finite, n_jobs=1, n_threads=1,
-                                            progress_bar=False)
+        results = cpt.BEMSolver().solve_all(problems, keep_details=finite, n_jobs=1, n_threads=1, progress_bar=False)
         for r in results:
             if isinstance(r.problem, cpt.RadiationProblem):
                 j = dofs.index(r.radiating_dof)
@@ -279,10 +287,26 @@ def far_field_drift(
     dH = np.gradient(H, dth, axis=-1, edge_order=2)
     # periodic derivative at the ends
     dH[..., 0] = dH[..., -1] = (H[..., 1] - H[..., -2]) / (2 * dth)
-    Hb = np.stack([[np.interp(headings[j] % (2 * np.pi), theta, H[i, j].real) + 1j * np.interp(
-        headings[j] % (2 * np.pi), theta, H[i, j].imag) for j in range(H.shape[1])] for i in range(H.shape[0])])
-    dHb = np.stack([[np.interp(headings[j] % (2 * np.pi), theta, dH[i, j].real) + 1j * np.interp(
-        headings[j] % (2 * np.pi), theta, dH[i, j].imag) for j in range(H.shape[1])] for i in range(H.shape[0])])
+    Hb = np.stack(
+        [
+            [
+                np.interp(headings[j] % (2 * np.pi), theta, H[i, j].real)
+                + 1j * np.interp(headings[j] % (2 * np.pi), theta, H[i, j].imag)
+                for j in range(H.shape[1])
+            ]
+            for i in range(H.shape[0])
+        ]
+    )
+    dHb = np.stack(
+        [
+            [
+                np.interp(headings[j] % (2 * np.pi), theta, dH[i, j].real)
+                + 1j * np.interp(headings[j] % (2 * np.pi), theta, dH[i, j].imag)
+                for j in range(H.shape[1])
+            ]
+            for i in range(H.shape[0])
+        ]
+    )
     h = float(water_depth)
     coef1 = 2 * np.pi * rho * omega
     if np.isinf(h):
@@ -302,8 +326,19 @@ def far_field_drift(
 
 
 def platform_dataset(
-    omega, headings, added_mass, added_mass_inf, damping, excitation, hydrostatic_stiffness, drift,
-    *, water_depth: float, rho: float, g: float, attrs: Mapping | None = None,
+    omega,
+    headings,
+    added_mass,
+    added_mass_inf,
+    damping,
+    excitation,
+    hydrostatic_stiffness,
+    drift,
+    *,
+    water_depth: float,
+    rho: float,
+    g: float,
+    attrs: Mapping | None = None,
 ) -> xr.Dataset:
     """Assemble the ``platform.nc`` dataset from arrays (package conventions, SI units).
 
@@ -315,30 +350,74 @@ def platform_dataset(
     hydrostatic_stiffness : ``(6, 6)`` buoyancy + waterplane; drift : ``(nw, nh, 6)`` or None.
     """
     dof = list(DOF_NAMES)
-    coords = {"omega": ("omega", np.asarray(omega, float), {"units": "rad s-1", "long_name": "wave angular frequency"}),
-              "heading": ("heading", np.asarray(headings, float),
-                          {"units": "rad", "long_name": "wave propagation angle, counter-clockwise from +x (east), direction of travel"}),
-              "dof": ("dof", dof), RADIATING_DOF: (RADIATING_DOF, dof)}
+    coords = {
+        "omega": ("omega", np.asarray(omega, float), {"units": "rad s-1", "long_name": "wave angular frequency"}),
+        "heading": (
+            "heading",
+            np.asarray(headings, float),
+            {
+                "units": "rad",
+                "long_name": "wave propagation angle, counter-clockwise from +x (east), direction of travel",
+            },
+        ),
+        "dof": ("dof", dof),
+        RADIATING_DOF: (RADIATING_DOF, dof),
+    }
     mat = ("omega", "dof", RADIATING_DOF)
     units_m = "kg, kg m, kg m2 (by dof pair)"
     data = {
-        "added_mass": (mat, np.asarray(added_mass, float), {"units": units_m, "long_name": "radiation added mass A(omega) about the origin"}),
-        "added_mass_inf": (("dof", RADIATING_DOF), np.asarray(added_mass_inf, float), {"units": units_m, "long_name": "infinite-frequency added mass"}),
-        "damping": (mat, np.asarray(damping, float), {"units": "N s m-1, N s, N m s (by dof pair)", "long_name": "radiation damping B(omega)"}),
-        "excitation": (("omega", "heading", "dof"), np.asarray(excitation, complex),
-                       {"units": "N m-1, N (moments: N m m-1)", "long_name": "first-order wave excitation per unit amplitude",
-                        "phase_convention": "exp(+i omega t) (WAMIT); eta = Re[a exp(i omega t)] at the origin"}),
-        "hydrostatic_stiffness": (("dof", RADIATING_DOF), np.asarray(hydrostatic_stiffness, float),
-                                  {"units": "N m-1, N, N m (by dof pair)", "long_name": "hydrostatic restoring, buoyancy and waterplane only (no -m g zG)"}),
+        "added_mass": (
+            mat,
+            np.asarray(added_mass, float),
+            {"units": units_m, "long_name": "radiation added mass A(omega) about the origin"},
+        ),
+        "added_mass_inf": (
+            ("dof", RADIATING_DOF),
+            np.asarray(added_mass_inf, float),
+            {"units": units_m, "long_name": "infinite-frequency added mass"},
+        ),
+        "damping": (
+            mat,
+            np.asarray(damping, float),
+            {"units": "N s m-1, N s, N m s (by dof pair)", "long_name": "radiation damping B(omega)"},
+        ),
+        "excitation": (
+            ("omega", "heading", "dof"),
+            np.asarray(excitation, complex),
+            {
+                "units": "N m-1, N (moments: N m m-1)",
+                "long_name": "first-order wave excitation per unit amplitude",
+                "phase_convention": "exp(+i omega t) (WAMIT); eta = Re[a exp(i omega t)] at the origin",
+            },
+        ),
+        "hydrostatic_stiffness": (
+            ("dof", RADIATING_DOF),
+            np.asarray(hydrostatic_stiffness, float),
+            {
+                "units": "N m-1, N, N m (by dof pair)",
+                "long_name": "hydrostatic restoring, buoyancy and waterplane only (no -m g zG)",
+            },
+        ),
     }
     if drift is not None:
-        data["drift"] = (("omega", "heading", "dof"), np.asarray(drift, float),
-                         {"units": "N m-2, N m m-2 (moments)", "long_name": "mean drift force per wave amplitude squared"})
-    ds = xr.Dataset({k: xr.Variable(*v) for k, v in data.items()},
-                    coords={k: xr.Variable(*v) if len(v) == 3 else xr.Variable(*v) for k, v in coords.items()})
-    ds.attrs.update({"rho": float(rho), "g": float(g), "water_depth": float(water_depth),
-                     "reference_point": [0.0, 0.0, 0.0],
-                     "phase_convention": "exp(+i omega t) (WAMIT); Capytaine output conjugated"})
+        data["drift"] = (
+            ("omega", "heading", "dof"),
+            np.asarray(drift, float),
+            {"units": "N m-2, N m m-2 (moments)", "long_name": "mean drift force per wave amplitude squared"},
+        )
+    ds = xr.Dataset(
+        {k: xr.Variable(*v) for k, v in data.items()},
+        coords={k: xr.Variable(*v) if len(v) == 3 else xr.Variable(*v) for k, v in coords.items()},
+    )
+    ds.attrs.update(
+        {
+            "rho": float(rho),
+            "g": float(g),
+            "water_depth": float(water_depth),
+            "reference_point": [0.0, 0.0, 0.0],
+            "phase_convention": "exp(+i omega t) (WAMIT); Capytaine output conjugated",
+        }
+    )
     if attrs:
         ds.attrs.update(dict(attrs))
     return ds
@@ -389,15 +468,34 @@ def _bem_one_mesh(settings: Mapping, panel_size: float, n_jobs: int) -> xr.Datas
     M, mtot, cg = system_mass_properties(settings["bodies"], "hydro params")
     # omitted at its schema default (bem_settings)
     around = float(settings.get("around_refinement", section_defaults("hydro.mesh")["around_refinement"]))
-    body = capytaine_body(members, panel_size, rotational_symmetry=settings.get("rotational_symmetry"),
-                          lid=settings["irregular_frequency_removal"], around=around)
+    body = capytaine_body(
+        members,
+        panel_size,
+        rotational_symmetry=settings.get("rotational_symmetry"),
+        lid=settings["irregular_frequency_removal"],
+        around=around,
+    )
     rho, g, h = float(env["rho_water"]), float(env["gravity"]), float(env["water_depth"])
     Ch = np.asarray(body.compute_hydrostatic_stiffness(rho=rho, g=g).values, dtype=float)
     C = Ch + gravity_stiffness(mtot, cg, g) + np.diag(np.asarray(settings["mooring_stiffness_diag"], dtype=float))
-    ds = run_bem(body, omega, headings, water_depth=h, rho=rho, g=g, mass_matrix=M, stiffness=C,
-                 n_kochin=settings["kochin_directions"], n_jobs=n_jobs)
-    ds.attrs.update({"panel_size": float(panel_size),
-                     "around_refinement": around,
-                     "rotational_symmetry": int(settings.get("rotational_symmetry") or 0),
-                     "irregular_frequency_removal": int(bool(settings["irregular_frequency_removal"]))})
+    ds = run_bem(
+        body,
+        omega,
+        headings,
+        water_depth=h,
+        rho=rho,
+        g=g,
+        mass_matrix=M,
+        stiffness=C,
+        n_kochin=settings["kochin_directions"],
+        n_jobs=n_jobs,
+    )
+    ds.attrs.update(
+        {
+            "panel_size": float(panel_size),
+            "around_refinement": around,
+            "rotational_symmetry": int(settings.get("rotational_symmetry") or 0),
+            "irregular_frequency_removal": int(bool(settings["irregular_frequency_removal"])),
+        }
+    )
     return ds

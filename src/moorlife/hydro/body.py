@@ -39,7 +39,9 @@ def rigid_body_mass_matrix(mass: float, cm: npt.ArrayLike, inertia_cm: npt.Array
     return M
 
 
-def system_mass_properties(platform_cfg: Mapping, source: str = "platform.yaml") -> tuple[np.ndarray, float, np.ndarray]:
+def system_mass_properties(
+    platform_cfg: Mapping, source: str = "platform.yaml"
+) -> tuple[np.ndarray, float, np.ndarray]:
     """Mass matrix of platform + ballast + tower + RNA about the origin.
 
     Returns
@@ -83,8 +85,12 @@ def gravity_stiffness(mass: float, cg: npt.ArrayLike, g: float) -> np.ndarray:
 
 
 def motion_rao(
-    omega: np.ndarray, mass: np.ndarray, added_mass: np.ndarray, damping: np.ndarray,
-    stiffness: np.ndarray, excitation: np.ndarray,
+    omega: np.ndarray,
+    mass: np.ndarray,
+    added_mass: np.ndarray,
+    damping: np.ndarray,
+    stiffness: np.ndarray,
+    excitation: np.ndarray,
 ) -> np.ndarray:
     """Linear motion per unit wave amplitude, exp(+i w t) convention.
 
@@ -105,8 +111,12 @@ def motion_rao(
 
 
 def natural_periods(
-    mass: np.ndarray, omega: np.ndarray, added_mass: np.ndarray, stiffness: np.ndarray,
-    dofs: Sequence[int] = (0, 2, 4), tol: float = 1e-8,
+    mass: np.ndarray,
+    omega: np.ndarray,
+    added_mass: np.ndarray,
+    stiffness: np.ndarray,
+    dofs: Sequence[int] = (0, 2, 4),
+    tol: float = 1e-8,
 ) -> np.ndarray:
     """Uncoupled natural periods with frequency-dependent added mass (fixed point).
 

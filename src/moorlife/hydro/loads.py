@@ -17,6 +17,7 @@ if TYPE_CHECKING:  # annotations only: the model module imports this one
 
 # ----------------------------------------------------------- excitation and drift
 
+
 def interp_heading(headings: np.ndarray, values: np.ndarray, heading: float) -> np.ndarray:
     """Linear interpolation in heading on the circle.
 
@@ -43,7 +44,7 @@ def interp_heading(headings: np.ndarray, values: np.ndarray, heading: float) -> 
     return (1 - f) * vv[:, j] + f * vv[:, j + 1]
 
 
-def excitation_at(model: "PlatformModel", heading_rad: float) -> np.ndarray:
+def excitation_at(model: PlatformModel, heading_rad: float) -> np.ndarray:
     """First-order excitation per unit amplitude ``(nw, 6)`` (complex, exp(+i w t)) at a heading.
 
     Real and imaginary parts are interpolated linearly in heading (the OC4 grid is 15 deg).
@@ -51,14 +52,18 @@ def excitation_at(model: "PlatformModel", heading_rad: float) -> np.ndarray:
     return interp_heading(model.headings, model.excitation, heading_rad)
 
 
-def drift_at(model: "PlatformModel", heading_rad: float) -> np.ndarray:
+def drift_at(model: PlatformModel, heading_rad: float) -> np.ndarray:
     """Mean drift coefficients ``(nw, 6)`` (N/m^2) at a heading."""
     return interp_heading(model.headings, model.drift, heading_rad)
 
 
 def newman_drift_force(
-    t: npt.ArrayLike, amplitudes: npt.ArrayLike, omegas: npt.ArrayLike, phases: npt.ArrayLike,
-    drift_coefficients: npt.ArrayLike, chunk: int = 4096,
+    t: npt.ArrayLike,
+    amplitudes: npt.ArrayLike,
+    omegas: npt.ArrayLike,
+    phases: npt.ArrayLike,
+    drift_coefficients: npt.ArrayLike,
+    chunk: int = 4096,
 ) -> np.ndarray:
     """Slow-drift force by Newman's approximation.
 
@@ -86,17 +91,20 @@ def newman_drift_force(
     if T.ndim == 1:
         T = T[:, None]
     if not (a.shape == w.shape == ph.shape == T.shape[:1]):
-        raise ValueError(f"newman_drift_force: shapes differ: a {a.shape}, omega {w.shape}, phase {ph.shape}, drift {T.shape}")
+        raise ValueError(
+            f"newman_drift_force: shapes differ: a {a.shape}, omega {w.shape}, phase {ph.shape}, drift {T.shape}"
+        )
     out = np.empty((t.size, T.shape[1]))
     for s in range(0, t.size, chunk):
-        e = np.exp(1j * (np.outer(t[s:s + chunk], w) + ph)) * a  # (nt, nc)
+        e = np.exp(1j * (np.outer(t[s : s + chunk], w) + ph)) * a  # (nt, nc)
         Q = e.sum(axis=1)
         P = e @ T
-        out[s:s + chunk] = (P * np.conj(Q)[:, None]).real
+        out[s : s + chunk] = (P * np.conj(Q)[:, None]).real
     return out
 
 
 # ------------------------------------------------------------------------ Morison drag
+
 
 def morison_elements(members: Sequence[Member], strip_length: float = 1.0) -> dict[str, np.ndarray]:
     """Split the submerged part (z < 0) of every member into drag strips.
@@ -135,11 +143,15 @@ def morison_elements(members: Sequence[Member], strip_length: float = 1.0) -> di
             aar.append(0.25 * np.pi * m.diameter**2)
             acd.append(m.axial_cd)
     return {
-        "points": np.concatenate(pts), "axis": np.concatenate(axs), "length": np.concatenate(lens),
-        "diameter": np.concatenate(dias), "cd": np.concatenate(cds),
+        "points": np.concatenate(pts),
+        "axis": np.concatenate(axs),
+        "length": np.concatenate(lens),
+        "diameter": np.concatenate(dias),
+        "cd": np.concatenate(cds),
         "axial_points": np.asarray(ap, dtype=float).reshape(-1, 3),
         "axial_axis": np.asarray(aa, dtype=float).reshape(-1, 3),
-        "axial_area": np.asarray(aar, dtype=float), "axial_cd": np.asarray(acd, dtype=float),
+        "axial_area": np.asarray(aar, dtype=float),
+        "axial_cd": np.asarray(acd, dtype=float),
     }
 
 
@@ -159,8 +171,15 @@ def point_velocity(points: np.ndarray, xdot: np.ndarray) -> np.ndarray:
 
 
 def morison_drag_force(
-    u_rel: np.ndarray, axis: np.ndarray, length: np.ndarray, diameter: np.ndarray, cd: np.ndarray,
-    rho: float, *, axial_area: np.ndarray | None = None, axial_cd: np.ndarray | None = None,
+    u_rel: np.ndarray,
+    axis: np.ndarray,
+    length: np.ndarray,
+    diameter: np.ndarray,
+    cd: np.ndarray,
+    rho: float,
+    *,
+    axial_area: np.ndarray | None = None,
+    axial_cd: np.ndarray | None = None,
 ) -> np.ndarray:
     """Quadratic drag on members (transverse) or on heave plates (axial).
 

@@ -83,7 +83,9 @@ def members_from_config(platform_cfg: dict, source: str = "platform.yaml") -> li
             raise ValueError(f"{where}: drag coefficients must be >= 0, got cd={cd}, axial_cd={axcd}")
         if m["kind"] == "column":
             if not np.allclose(a[:2], b[:2]) or b[2] <= a[2]:
-                raise ValueError(f"{where}: a column must be vertical with a below b, got a={a.tolist()}, b={b.tolist()}")
+                raise ValueError(
+                    f"{where}: a column must be vertical with a below b, got a={a.tolist()}, b={b.tolist()}"
+                )
         out.append(Member(str(m["name"]), str(m["kind"]), a, b, d, cd, axcd))
     return out
 
@@ -140,8 +142,9 @@ def wall_panels(a: np.ndarray, b: np.ndarray, radius: float, panel_size: float, 
     return vertices, faces
 
 
-def annulus_panels(centre, r_inner: float, r_outer: float, panel_size: float, normal_up: bool,
-                   n_theta: int | None = None):
+def annulus_panels(
+    centre, r_inner: float, r_outer: float, panel_size: float, normal_up: bool, n_theta: int | None = None
+):
     """Panels of a horizontal disk (``r_inner = 0``) or annulus at ``centre``.
 
     Returns ``(vertices (nv, 3), faces (nf, 4))``; triangles repeat their last vertex.
@@ -230,8 +233,7 @@ def _concat(parts):
 BRACE_PANELS_AROUND = 12
 
 
-def _inside_cylinder(points: np.ndarray, a: np.ndarray, b: np.ndarray, radius: float,
-                     tol: float = 1e-6) -> np.ndarray:
+def _inside_cylinder(points: np.ndarray, a: np.ndarray, b: np.ndarray, radius: float, tol: float = 1e-6) -> np.ndarray:
     """``(n,)`` True where ``points (n, 3)`` lie strictly inside the solid cylinder ``a -> b``."""
     length = float(np.linalg.norm(b - a))
     e = (b - a) / length
@@ -240,8 +242,9 @@ def _inside_cylinder(points: np.ndarray, a: np.ndarray, b: np.ndarray, radius: f
     return (d < radius - tol) & (s > tol) & (s < length - tol)
 
 
-def _drop_covered(vertices: np.ndarray, faces: np.ndarray,
-                  solids: Sequence[tuple[np.ndarray, np.ndarray, float, float]]) -> np.ndarray:
+def _drop_covered(
+    vertices: np.ndarray, faces: np.ndarray, solids: Sequence[tuple[np.ndarray, np.ndarray, float, float]]
+) -> np.ndarray:
     """``faces`` without the panels another member covers.
 
     ``solids`` holds cylinders ``(a, b, radius, margin)``. A panel is covered when its centre
@@ -253,8 +256,9 @@ def _drop_covered(vertices: np.ndarray, faces: np.ndarray,
     centres = vertices[faces].mean(axis=1)
     covered = np.zeros(len(faces), dtype=bool)
     for a, b, radius, margin in solids:
-        covered |= (_inside_cylinder(centres, a, b, radius)
-                    & _inside_cylinder(vertices, a, b, radius + margin)[faces].all(axis=1))
+        covered |= _inside_cylinder(centres, a, b, radius) & _inside_cylinder(vertices, a, b, radius + margin)[
+            faces
+        ].all(axis=1)
     return faces[~covered]
 
 
@@ -351,8 +355,11 @@ def hull_panels(members: Sequence[Member], panel_size: float, around: float = 1.
             if end[2] >= 0.0:
                 continue
             # coaxial column continuing from this end on the other side
-            others = [o for o in cols if o is not m and np.allclose(o.a[:2], m.a[:2])
-                      and np.isclose((o.a if up else o.b)[2], end[2])]
+            others = [
+                o
+                for o in cols
+                if o is not m and np.allclose(o.a[:2], m.a[:2]) and np.isclose((o.a if up else o.b)[2], end[2])
+            ]
             r_cover = max((o.radius for o in others), default=0.0)
             if r_cover >= m.radius:
                 continue
@@ -360,11 +367,16 @@ def hull_panels(members: Sequence[Member], panel_size: float, around: float = 1.
         parts += [(v, _drop_covered(v, f, brace_solids)) for v, f in col_parts]
     for m, a, b, closed_a, closed_b in braces:
         nt = n_around(m.radius, panel_size / around, minimum=BRACE_PANELS_AROUND)
-        caps = [_disk_panels(p, s * m.axis, m.radius, panel_size, nt)
-                for p, s, closed in ((a, -1.0, closed_a), (b, 1.0, closed_b)) if not closed and p[2] < 0.0]
+        caps = [
+            _disk_panels(p, s * m.axis, m.radius, panel_size, nt)
+            for p, s, closed in ((a, -1.0, closed_a), (b, 1.0, closed_b))
+            if not closed and p[2] < 0.0
+        ]
         column_solids = [(col.a, col.b, col.radius, m.radius) for col in cols]
-        parts += [_clip_below(v, _drop_covered(v, f, column_solids))
-                  for v, f in [wall_panels(a, b, m.radius, panel_size, nt), *caps]]
+        parts += [
+            _clip_below(v, _drop_covered(v, f, column_solids))
+            for v, f in [wall_panels(a, b, m.radius, panel_size, nt), *caps]
+        ]
     if not parts:
         raise ValueError("no member is below the still-water line: nothing to mesh")
     return _concat(parts)
@@ -379,8 +391,7 @@ def lid_panels(members: Sequence[Member], panel_size: float, z: float = 0.0, aro
     Returns ``(vertices (nv, 3), faces (nf, 4))`` with normals pointing down (into the body).
     """
     parts = [
-        annulus_panels([m.a[0], m.a[1], z], 0.0, m.radius, panel_size, False,
-                       n_around(m.radius, panel_size / around))
+        annulus_panels([m.a[0], m.a[1], z], 0.0, m.radius, panel_size, False, n_around(m.radius, panel_size / around))
         for m in members
         if m.kind == "column" and m.a[2] < z < m.b[2]
     ]

@@ -137,8 +137,7 @@ def load_platform_model(
     Ainf = platform["added_mass_inf"].transpose("dof", RADIATING_DOF).values
     Ch = platform["hydrostatic_stiffness"].transpose("dof", RADIATING_DOF).values
     X = platform["excitation"].transpose("omega", "heading", "dof").values
-    D = (platform["drift"].transpose("omega", "heading", "dof").values if "drift" in platform
-         else np.zeros(X.shape))
+    D = platform["drift"].transpose("omega", "heading", "dof").values if "drift" in platform else np.zeros(X.shape)
     C = Ch + gravity_stiffness(mtot, cg, g)
     t = np.arange(0.0, kernel_duration + 0.5 * kernel_dt, kernel_dt)
     K = retardation_kernel(omega, B, t)
@@ -159,19 +158,51 @@ def load_platform_model(
     centre = float(fc["centre"]) if fc.get("centre") is not None else wp
     R = float(tcfg["rotor_radius"])
     return PlatformModel(
-        mass=M, total_mass=mtot, cg=cg, added_mass_inf=Ainf, hydrostatic_stiffness=Ch, stiffness=C,
-        ss_A=ss_a, ss_B=ss_b, ss_C=ss_c, ss_kernel_error=ss_errs[0], ss_damping_error=ss_errs[1],
-        kernel_t=t, kernel=K, kernel_dt=float(kernel_dt),
-        omega=omega, headings=platform["heading"].values, excitation=X, drift=D, added_mass=A, damping=B,
-        morison_points=el["points"], morison_axis=el["axis"], morison_length=el["length"],
-        morison_diameter=el["diameter"], morison_cd=el["cd"], axial_points=el["axial_points"],
-        axial_axis=el["axial_axis"], axial_area=el["axial_area"], axial_cd=el["axial_cd"],
-        rho=rho, g=g, water_depth=float(platform.attrs.get("water_depth", env["water_depth"])),
+        mass=M,
+        total_mass=mtot,
+        cg=cg,
+        added_mass_inf=Ainf,
+        hydrostatic_stiffness=Ch,
+        stiffness=C,
+        ss_A=ss_a,
+        ss_B=ss_b,
+        ss_C=ss_c,
+        ss_kernel_error=ss_errs[0],
+        ss_damping_error=ss_errs[1],
+        kernel_t=t,
+        kernel=K,
+        kernel_dt=float(kernel_dt),
+        omega=omega,
+        headings=platform["heading"].values,
+        excitation=X,
+        drift=D,
+        added_mass=A,
+        damping=B,
+        morison_points=el["points"],
+        morison_axis=el["axis"],
+        morison_length=el["length"],
+        morison_diameter=el["diameter"],
+        morison_cd=el["cd"],
+        axial_points=el["axial_points"],
+        axial_axis=el["axial_axis"],
+        axial_area=el["axial_area"],
+        axial_cd=el["axial_cd"],
+        rho=rho,
+        g=g,
+        water_depth=float(platform.attrs.get("water_depth", env["water_depth"])),
         rho_air=float(env.get("rho_air", 1.225)),
-        hub_point=np.array([0.0, 0.0, float(tcfg["hub_height"])]), hub_height=float(tcfg["hub_height"]),
-        rotor_radius=R, rotor_area=np.pi * R**2, ct_wind_speed=ws, ct=ct,
-        cut_in=float(tcfg["cut_in"]), cut_out=float(tcfg["cut_out"]),
-        shutdown_ramp=float(tcfg.get("shutdown_ramp", 1.0)), startup_ramp=float(tcfg.get("startup_ramp", 1.0)),
-        pitch_natural_frequency=float(wp), pitch_filter_centre=centre,
-        pitch_filter_quality=float(fc.get("quality", 1.0)), mooring_stiffness=Km,
+        hub_point=np.array([0.0, 0.0, float(tcfg["hub_height"])]),
+        hub_height=float(tcfg["hub_height"]),
+        rotor_radius=R,
+        rotor_area=np.pi * R**2,
+        ct_wind_speed=ws,
+        ct=ct,
+        cut_in=float(tcfg["cut_in"]),
+        cut_out=float(tcfg["cut_out"]),
+        shutdown_ramp=float(tcfg.get("shutdown_ramp", 1.0)),
+        startup_ramp=float(tcfg.get("startup_ramp", 1.0)),
+        pitch_natural_frequency=float(wp),
+        pitch_filter_centre=centre,
+        pitch_filter_quality=float(fc.get("quality", 1.0)),
+        mooring_stiffness=Km,
     )

@@ -28,7 +28,9 @@ def _extended_damping(omega: np.ndarray, damping: np.ndarray, n_fine: int) -> tu
     return wf, bf * taper.reshape((-1,) + (1,) * (damping.ndim - 1))
 
 
-def retardation_kernel(omega: npt.ArrayLike, damping: npt.ArrayLike, t: npt.ArrayLike, n_fine: int = 4000) -> np.ndarray:
+def retardation_kernel(
+    omega: npt.ArrayLike, damping: npt.ArrayLike, t: npt.ArrayLike, n_fine: int = 4000
+) -> np.ndarray:
     """Radiation impulse response ``K(t) = (2/pi) int_0^inf B(w) cos(w t) dw``.
 
     ``B`` is interpolated (monotone cubic) on a fine grid with ``B(0) = 0`` and tapered to
@@ -105,8 +107,13 @@ def state_space_response(ss: StateSpace, omega: npt.ArrayLike) -> np.ndarray:
 
 
 def fit_state_space(
-    t: np.ndarray, K: np.ndarray, order: int = 24, *, omega: np.ndarray | None = None,
-    damping: np.ndarray | None = None, hankel_rows: int | None = None,
+    t: np.ndarray,
+    K: np.ndarray,
+    order: int = 24,
+    *,
+    omega: np.ndarray | None = None,
+    damping: np.ndarray | None = None,
+    hankel_rows: int | None = None,
 ) -> StateSpace:
     """Fit a stable MIMO state space to the retardation kernel (ERA / Kung realisation).
 
@@ -139,8 +146,8 @@ def fit_state_space(
     H1 = np.empty((r * p, c * q))
     for i in range(r):
         for j in range(c):
-            H0[i * p:(i + 1) * p, j * q:(j + 1) * q] = K[i + j]
-            H1[i * p:(i + 1) * p, j * q:(j + 1) * q] = K[i + j + 1]
+            H0[i * p : (i + 1) * p, j * q : (j + 1) * q] = K[i + j]
+            H1[i * p : (i + 1) * p, j * q : (j + 1) * q] = K[i + j + 1]
     U, s, Vt = np.linalg.svd(H0, full_matrices=False)
     n = int(min(order, np.sum(s > s[0] * 1e-12)))
     U, s, Vt = U[:, :n], s[:n], Vt[:n]
@@ -151,7 +158,7 @@ def fit_state_space(
     lam, V = np.linalg.eig(Ad)
     lam = np.where(np.abs(lam) >= 1.0, 1.0 / np.conj(lam) * 0.999, lam)  # reflect unstable poles
     lam = np.where(np.abs(lam) < 1e-12, 1e-12, lam)
-    Ac = (V @ np.diag(np.log(lam) / dt) @ np.linalg.inv(V))
+    Ac = V @ np.diag(np.log(lam) / dt) @ np.linalg.inv(V)
     if np.max(np.abs(Ac.imag)) > 1e-6 * max(1.0, np.max(np.abs(Ac.real))):
         log.warning("fit_state_space: complex residue in log(Ad) (%.2e), real part kept", np.max(np.abs(Ac.imag)))
     ss = StateSpace(Ac.real, Bd, Cd)

@@ -144,13 +144,14 @@ def _read_csv(path: Path) -> tuple[pd.DataFrame, np.ndarray, dict[str, Any]]:
                     break
     except UnicodeDecodeError:
         raise HindcastError(
-            f"{path}: not a CSV text file (not UTF-8 text); give a CSV, NetCDF or Zarr hindcast "
-            "(hindcast.format)"
+            f"{path}: not a CSV text file (not UTF-8 text); give a CSV, NetCDF or Zarr hindcast (hindcast.format)"
         ) from None
     if columns is not None:
         dup = sorted({c for c in columns if c and columns.count(c) > 1})
         if dup:
-            raise HindcastError(f"{path}: duplicated column name(s) {dup} in the header row; each column must be named once")
+            raise HindcastError(
+                f"{path}: duplicated column name(s) {dup} in the header row; each column must be named once"
+            )
     try:
         df = pd.read_csv(path, skiprows=len(header), skip_blank_lines=False, dtype={"time": str}, encoding="utf-8-sig")
     except pd.errors.EmptyDataError as exc:
@@ -194,7 +195,11 @@ def _nearest_point(ds: xr.Dataset, lon: float | None, lat: float | None, path: P
         ds = ds.sel({lat_name: lat, lon_name: lon_c}, method="nearest")
         log.info(
             "%s: took the grid point nearest the site (%.3f E, %.3f N): %.3f E, %.3f N",
-            path, lon, lat, float(ds[lon_name]), float(ds[lat_name]),
+            path,
+            lon,
+            lat,
+            float(ds[lon_name]),
+            float(ds[lat_name]),
         )
         extra = [d for d in ds.dims if d != tname and ds.sizes[d] > 1]
         if extra:
@@ -202,7 +207,9 @@ def _nearest_point(ds: xr.Dataset, lon: float | None, lat: float | None, path: P
     return ds.squeeze(drop=False)
 
 
-def _read_xarray(path: Path, fmt: str, lon: float | None, lat: float | None) -> tuple[pd.DataFrame, np.ndarray, dict[str, Any]]:
+def _read_xarray(
+    path: Path, fmt: str, lon: float | None, lat: float | None
+) -> tuple[pd.DataFrame, np.ndarray, dict[str, Any]]:
     try:
         if fmt == "zarr":
             ds = xr.open_zarr(path, consolidated=False)
@@ -294,9 +301,7 @@ def _wind_candidates(cols: list[str], measured_height: float | None) -> list[Win
         for s, d in _SPEED_DIR_GENERIC:
             if s in cset and d in cset:
                 if measured_height is None:
-                    raise HindcastError(
-                        f"wind columns '{s}'/'{d}' carry no height: set hindcast.measured_height (m)"
-                    )
+                    raise HindcastError(f"wind columns '{s}'/'{d}' carry no height: set hindcast.measured_height (m)")
                 out.append(WindColumns("speed_dir", s, d, float(measured_height)))
                 break
     return out
@@ -342,9 +347,7 @@ def plan_columns(
         else:
             waves[v] = c
     if missing:
-        raise HindcastError(
-            f"missing column(s): {'; '.join(missing)}; found {columns}. Map them with hindcast.columns"
-        )
+        raise HindcastError(f"missing column(s): {'; '.join(missing)}; found {columns}. Map them with hindcast.columns")
     wind: WindColumns | None = None
     heights: tuple[float, ...] = ()
     if "wind_speed" in cmap or "wind_dir" in cmap or "wind_u" in cmap or "wind_v" in cmap:
@@ -435,7 +438,11 @@ def _refuse_infinite(std: pd.DataFrame, labels: Mapping[str, str], p: Path, rows
 
 
 def _apply_sea_state_policy(
-    std: pd.DataFrame, labels: Mapping[str, str], p: Path, rows: np.ndarray, policy: str,
+    std: pd.DataFrame,
+    labels: Mapping[str, str],
+    p: Path,
+    rows: np.ndarray,
+    policy: str,
     cleaning: CleaningPolicy | None,
 ) -> pd.DataFrame:
     """Refuse, drop (make gaps of) or clip the sea states beyond the breaking steepness or the Tp floor."""
@@ -461,15 +468,30 @@ def _apply_sea_state_policy(
     out = std.copy()
     if policy == "drop":
         for i in bad:
-            log.warning("%s: row %s (time %s): dropped hs = %g m, tp = %g s (%s); the hour becomes a gap",
-                        p, rows[i], std["time"].iloc[i], hs[i], tp[i], rep.reason(int(i)))
+            log.warning(
+                "%s: row %s (time %s): dropped hs = %g m, tp = %g s (%s); the hour becomes a gap",
+                p,
+                rows[i],
+                std["time"].iloc[i],
+                hs[i],
+                tp[i],
+                rep.reason(int(i)),
+            )
         out["hs"] = np.where(rep.bad, np.nan, hs)
         out["tp"] = np.where(rep.bad, np.nan, tp)
         return out
     new_tp = clipped_tp(hs, tp)
     for i in bad:
-        log.warning("%s: row %s (time %s): clipped tp %g -> %.4g s for hs = %g m (%s)",
-                    p, rows[i], std["time"].iloc[i], tp[i], new_tp[i], hs[i], rep.reason(int(i)))
+        log.warning(
+            "%s: row %s (time %s): clipped tp %g -> %.4g s for hs = %g m (%s)",
+            p,
+            rows[i],
+            std["time"].iloc[i],
+            tp[i],
+            new_tp[i],
+            hs[i],
+            rep.reason(int(i)),
+        )
     keep_raw = ~rep.bad  # leave the untouched cells as they were (their own checks name them)
     out["tp"] = np.where(keep_raw, std["tp"].to_numpy(dtype=object), new_tp)
     return out
@@ -628,12 +650,24 @@ def read_hindcast(
         extra["wind_measured_height"] = h
         log.info(
             "%s: wind %s at %g m (heights available: %s) lifted to %g m with exponent %g",
-            p, plan.wind.label, h, ", ".join(f"{x:g}" for x in plan.wind_heights), hub_height, shear_exponent,
+            p,
+            plan.wind.label,
+            h,
+            ", ".join(f"{x:g}" for x in plan.wind_heights),
+            hub_height,
+            shear_exponent,
         )
     flon, flat = meta.get("lon"), meta.get("lat")
     if flon is not None and flat is not None:
         if lon is not None and lat is not None and np.hypot(float(lon) - flon, float(lat) - flat) > 0.5:
-            log.warning("%s: file position (%.3f E, %.3f N) differs from hindcast.site (%.3f E, %.3f N)", p, flon, flat, lon, lat)
+            log.warning(
+                "%s: file position (%.3f E, %.3f N) differs from hindcast.site (%.3f E, %.3f N)",
+                p,
+                flon,
+                flat,
+                lon,
+                lat,
+            )
         lon, lat = flon, flat
     ds = hindcast_dataset(
         clean.index.to_numpy(),
@@ -647,7 +681,11 @@ def read_hindcast(
     )
     log.info(
         "%s: %d hours %s .. %s, mean Hs %.2f m%s",
-        p, ds.sizes["time"], clean.index[0], clean.index[-1], float(ds["hs"].mean()),
+        p,
+        ds.sizes["time"],
+        clean.index[0],
+        clean.index[-1],
+        float(ds["hs"].mean()),
         f", mean wind {float(ds['wind_speed'].mean()):.2f} m/s at {hub_height:g} m" if "wind_speed" in ds else "",
     )
     return ds

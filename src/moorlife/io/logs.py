@@ -14,8 +14,9 @@ __all__ = ["log_to"]
 
 
 @contextlib.contextmanager
-def log_to(path: str | os.PathLike[str], level: int = logging.INFO, *,
-           blas_threads: int | None = 1, capture_fds: bool = True) -> Iterator[logging.Logger]:
+def log_to(
+    path: str | os.PathLike[str], level: int = logging.INFO, *, blas_threads: int | None = 1, capture_fds: bool = True
+) -> Iterator[logging.Logger]:
     """Send the ``moorlife`` logger (and warnings) to a rule's log file.
 
     With ``capture_fds`` the block's standard output and error (file descriptors 1 and 2) go to

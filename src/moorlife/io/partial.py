@@ -43,8 +43,13 @@ def _dims_for(name: str, arr: np.ndarray, dim: str) -> tuple[str, ...]:
     return (dim, *(f"{name}_{i}" for i in range(1, arr.ndim)))
 
 
-def _template(first: Mapping[str, np.ndarray], cases: xr.Dataset, dim: str, n_batches: int,
-              attrs_of: Callable[[str], Mapping[str, str]] | None = None) -> xr.Dataset:
+def _template(
+    first: Mapping[str, np.ndarray],
+    cases: xr.Dataset,
+    dim: str,
+    n_batches: int,
+    attrs_of: Callable[[str], Mapping[str, str]] | None = None,
+) -> xr.Dataset:
     n = cases.sizes[dim]
     data: dict[str, Any] = {}
     for name, arr in first.items():
@@ -88,8 +93,9 @@ def _write_batch(path: Path, dim: str, sl: slice, b: int, result: Mapping[str, n
 
     region = xr.Dataset({k: (_dims_for(k, v, dim), v) for k, v in result.items()})
     region = region.drop_vars([c for c in region.coords], errors="ignore")
-    region.to_zarr(path, region={dim: sl, **{d: slice(None) for d in region.dims if d != dim}},
-                   mode="r+", **mio.ZARR_KW)
+    region.to_zarr(
+        path, region={dim: sl, **{d: slice(None) for d in region.dims if d != dim}}, mode="r+", **mio.ZARR_KW
+    )
     zarr.open_group(str(path), mode="r+")[_DONE][b] = 1
 
 
@@ -156,8 +162,9 @@ class PartialStore:
             self.log.info("%s is complete (a previous run did not promote it): promoting it", self.path)
         elif existing is not None:
             self.done = np.asarray(existing[_DONE].values, dtype=bool)
-            self.log.info("resuming %s: %d of %d batches already done", self.path, int(self.done.sum()),
-                          len(self.slices))
+            self.log.info(
+                "resuming %s: %d of %d batches already done", self.path, int(self.done.sum()), len(self.slices)
+            )
 
     def todo(self) -> list[int]:
         """Indices of the batches still to compute."""

@@ -40,8 +40,12 @@ _NUMERIC = {
 
 #: Fields with a fixed number of values.
 _LENGTH = {
-    ("platform", "cm"): 3, ("tower", "cm"): 3, ("rna", "cm"): 3,
-    ("platform", "inertia_cm"): 3, ("tower", "inertia_cm"): 3, ("rna", "inertia_cm"): 3,
+    ("platform", "cm"): 3,
+    ("tower", "cm"): 3,
+    ("rna", "cm"): 3,
+    ("platform", "inertia_cm"): 3,
+    ("tower", "inertia_cm"): 3,
+    ("rna", "inertia_cm"): 3,
     ("", "mooring_stiffness_diag"): 6,
 }
 
@@ -74,16 +78,19 @@ def read_platform_config(path: str | os.PathLike[str]) -> dict:
             for n, x in enumerate(vals):
                 if isinstance(x, bool) or not isinstance(x, (int, float)):
                     where = f"{block}.{k}" if block else k
-                    raise ValueError(f"{p}: {where}[{n}] = {x!r} is not a number "
-                                     "(YAML needs a sign in the exponent: write 1.5e+7, not 1.5e7)")
+                    raise ValueError(
+                        f"{p}: {where}[{n}] = {x!r} is not a number "
+                        "(YAML needs a sign in the exponent: write 1.5e+7, not 1.5e7)"
+                    )
     for (block, k), size in _LENGTH.items():
         v = cfg[block].get(k) if block else cfg.get(k)
         if v is None:
             continue
         if np.ndim(v) != 1 or len(v) != size:
             where = f"{block}.{k}" if block else k
-            raise ValueError(f"{p}: {where} = {v!r} must be a list of {size} numbers"
-                             + (" (x, y, z in m)" if k == "cm" else ""))
+            raise ValueError(
+                f"{p}: {where} = {v!r} must be a list of {size} numbers" + (" (x, y, z in m)" if k == "cm" else "")
+            )
     members_from_config(cfg, str(p))
     ct_table(cfg["turbine"], str(p))
     return cfg

@@ -84,37 +84,56 @@ def overview_rst(table: pd.DataFrame, rec: Mapping[str, Any]) -> str:
     if chosen:
         out += [f"**Recommended mooring system: {chosen}**, the {rec.get('rule', '')}.", ""]
     else:
-        out += [f"**No mooring system passes**: the recommendation is the {rec.get('rule', '')}, "
-                "and every system exceeds it (highest utilisation below).", ""]
+        out += [
+            f"**No mooring system passes**: the recommendation is the {rec.get('rule', '')}, "
+            "and every system exceeds it (highest utilisation below).",
+            "",
+        ]
     util = rec.get("max_utilisation") or {}
     if util:
         rows = [[str(ms), _num(u), "pass" if float(u) <= 1.0 else "**fail**"] for ms, u in util.items()]
-        out += _list_table("Highest utilisation (DFF x design-life damage) over the lines and curves",
-                           ["System", "Utilisation", "Verdict"], rows)
+        out += _list_table(
+            "Highest utilisation (DFF x design-life damage) over the lines and curves",
+            ["System", "Utilisation", "Verdict"],
+            rows,
+        )
     cols = [(c, h) for c, h in TABLE_COLUMNS if c in table.columns]
-    out += ["Life cycle", "----------", "",
-            "Damage of every line over the hindcast (every hour, through the RBF reconstruction) "
-            "and from the scatter matrix over the same hours; difference = 100 (life cycle - "
-            "matrix) / life cycle; fatigue life with its band [low, high] from the seed scatter "
-            "and the RBF validation error; utilisation = DFF x design-life damage "
-            "(``results/comparison/summary.csv``, which also holds the damage per year, the "
-            "DFF and the largest offsets and tensions).", ""]
+    out += [
+        "Life cycle",
+        "----------",
+        "",
+        "Damage of every line over the hindcast (every hour, through the RBF reconstruction) "
+        "and from the scatter matrix over the same hours; difference = 100 (life cycle - "
+        "matrix) / life cycle; fatigue life with its band [low, high] from the seed scatter "
+        "and the RBF validation error; utilisation = DFF x design-life damage "
+        "(``results/comparison/summary.csv``, which also holds the damage per year, the "
+        "DFF and the largest offsets and tensions).",
+        "",
+    ]
     rows = [[_cell(c, r) for c, _ in cols] for r in table.to_dict("records")]
     out += _list_table("Life-cycle fatigue per mooring system, line and curve", [h for _, h in cols], rows)
     diff = rec.get("mean_difference_pct") or {}
     if diff:
-        out += ["Comparison with the scatter matrix", "----------------------------------", "",
-                "The conventional discrete approach (one simulation per Hs-Tp bin, weighted by the "
-                "bin's hours) against the life cycle: difference = 100 (life cycle - matrix) / life "
-                "cycle, mean over the mooring systems; positive where the matrix underestimates "
-                "the damage.", ""]
+        out += [
+            "Comparison with the scatter matrix",
+            "----------------------------------",
+            "",
+            "The conventional discrete approach (one simulation per Hs-Tp bin, weighted by the "
+            "bin's hours) against the life cycle: difference = 100 (life cycle - matrix) / life "
+            "cycle, mean over the mooring systems; positive where the matrix underestimates "
+            "the damage.",
+            "",
+        ]
         rows = [[k.split("/")[0], k.split("/", 1)[-1], _num(v, "{:+.1f}")] for k, v in diff.items()]
-        out += _list_table("Matrix vs life-cycle damage, mean difference (%)", ["Curve", "Line", "Difference (%)"], rows)
+        out += _list_table(
+            "Matrix vs life-cycle damage, mean difference (%)", ["Curve", "Line", "Difference (%)"], rows
+        )
     return "\n".join(out) + "\n"
 
 
-def write_overview(summary_csv: str | os.PathLike[str], recommendation_yaml: str | os.PathLike[str],
-                   out: str | os.PathLike[str]) -> None:
+def write_overview(
+    summary_csv: str | os.PathLike[str], recommendation_yaml: str | os.PathLike[str], out: str | os.PathLike[str]
+) -> None:
     """Read the comparison outputs and write :func:`overview_rst` to ``out``."""
     text = overview_rst(pd.read_csv(summary_csv), read_yaml(recommendation_yaml))
     p = Path(out)

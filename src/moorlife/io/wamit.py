@@ -193,12 +193,20 @@ def _drift_on_grid(omega, headings, d_omega, d_heads, D) -> np.ndarray:
     """Drift on the excitation grid: linear in omega (0 below the file's range, held above);
     in heading on the circle, or -- with a single heading -- rotated with the waves."""
     out = np.zeros((omega.size, headings.size, 6))
-    Dw = np.stack([[np.interp(omega, d_omega, D[:, h, k], left=0.0, right=D[-1, h, k]) for k in range(6)]
-                   for h in range(d_heads.size)], axis=-1)  # (6, nw, nh_d) -> reorder
+    Dw = np.stack(
+        [
+            [np.interp(omega, d_omega, D[:, h, k], left=0.0, right=D[-1, h, k]) for k in range(6)]
+            for h in range(d_heads.size)
+        ],
+        axis=-1,
+    )  # (6, nw, nh_d) -> reorder
     Dw = np.moveaxis(Dw, 0, -1)  # (nw, nh_d, 6)
     if d_heads.size == 1:
-        log.warning("WAMIT .12d has one heading (%.1f deg): horizontal drift rotated with the waves "
-                    "for other headings (an approximation for a near-axisymmetric hull)", np.rad2deg(d_heads[0]))
+        log.warning(
+            "WAMIT .12d has one heading (%.1f deg): horizontal drift rotated with the waves "
+            "for other headings (an approximation for a near-axisymmetric hull)",
+            np.rad2deg(d_heads[0]),
+        )
         rot = headings - d_heads[0]
         fx, fy = Dw[:, 0, 0], Dw[:, 0, 1]
         out[..., 0] = fx[:, None] * np.cos(rot) - fy[:, None] * np.sin(rot)
@@ -212,8 +220,14 @@ def _drift_on_grid(omega, headings, d_omega, d_heads, D) -> np.ndarray:
     return out
 
 
-def read_wamit_dataset(prefix: str | os.PathLike[str], *, rho: float = 1025.0, g: float = 9.80665,
-                       ulen: float = 1.0, water_depth: float = float("nan")) -> xr.Dataset:
+def read_wamit_dataset(
+    prefix: str | os.PathLike[str],
+    *,
+    rho: float = 1025.0,
+    g: float = 9.80665,
+    ulen: float = 1.0,
+    water_depth: float = float("nan"),
+) -> xr.Dataset:
     """Read ``<prefix>.1``, ``.3``, ``.hst`` (and ``.12d`` if present) as a ``platform.nc`` dataset.
 
     WAMIT files do not record the water depth: pass the one of the run (``water_depth``, m).
@@ -237,7 +251,22 @@ def read_wamit_dataset(prefix: str | os.PathLike[str], *, rho: float = 1025.0, g
         dw, dh, D = read_wamit_12d(prefix + ".12d", rho=rho, g=g, ulen=ulen)
         drift = _drift_on_grid(w1, heads, dw, dh, D)
         src += "/.12d"
-    attrs = {"source": src, "ulen": float(ulen),
-             "drift_method": "WAMIT .12d diagonal (mean drift)" if drift is not None else "none"}
-    return platform_dataset(w1, heads, A, a_inf, B, X, C, drift if drift is not None else np.zeros(X.shape),
-                            water_depth=float(water_depth), rho=rho, g=g, attrs=attrs)
+    attrs = {
+        "source": src,
+        "ulen": float(ulen),
+        "drift_method": "WAMIT .12d diagonal (mean drift)" if drift is not None else "none",
+    }
+    return platform_dataset(
+        w1,
+        heads,
+        A,
+        a_inf,
+        B,
+        X,
+        C,
+        drift if drift is not None else np.zeros(X.shape),
+        water_depth=float(water_depth),
+        rho=rho,
+        g=g,
+        attrs=attrs,
+    )

@@ -57,8 +57,10 @@ def _selection_scaling(cases: xr.Dataset) -> tuple[np.ndarray | None, np.ndarray
     order = list(cases.attrs.get("norm_variables", names.METOCEAN_VARS))
     missing = [v for v in names.METOCEAN_VARS if v not in order]
     if missing or len(order) != len(lo) or len(order) != len(span):
-        raise ValueError(f"cases.zarr: attributes norm_variables {order}, norm_lo, norm_span are inconsistent "
-                         f"(need {list(names.METOCEAN_VARS)})")
+        raise ValueError(
+            f"cases.zarr: attributes norm_variables {order}, norm_lo, norm_span are inconsistent "
+            f"(need {list(names.METOCEAN_VARS)})"
+        )
     idx = [order.index(v) for v in names.METOCEAN_VARS]
     return np.asarray(lo, dtype=float)[idx], np.asarray(span, dtype=float)[idx]
 
@@ -72,16 +74,20 @@ def _fit_vars(out: xr.Dataset, model: rbf.RBFModel, x_train: np.ndarray, ids: np
     out = out.assign_coords(train=("train", ids))
     out["shape_parameter"] = ("output", model.shape, _a("RBF shape parameter q0 (normalised distance)"))
     out["smoothing"] = ("output", model.smoothing, _a("RBF ridge term on the kernel diagonal (0: exact)"))
-    out["loo_rmse"] = ("output", np.sqrt(np.mean(model.loo_error**2, axis=0)),
-                       _a("Rippa leave-one-out RMSE (transformed space)"))
+    out["loo_rmse"] = (
+        "output",
+        np.sqrt(np.mean(model.loo_error**2, axis=0)),
+        _a("Rippa leave-one-out RMSE (transformed space)"),
+    )
     out["log_transform"] = ("output", model.log_output.astype(np.int8), _a("1 if interpolated as log10"))
     out["train_points"] = (("train", "metocean_var"), x_train, _a("training sea states (physical units)"))
     out["loo_error"] = (("train", "output"), model.loo_error, _a("leave-one-out residual per training state"))
     return out
 
 
-def _validation_vars(out: xr.Dataset, model: rbf.RBFModel, x_val: np.ndarray, y_val: np.ndarray,
-                     ids: np.ndarray) -> xr.Dataset:
+def _validation_vars(
+    out: xr.Dataset, model: rbf.RBFModel, x_val: np.ndarray, y_val: np.ndarray, ids: np.ndarray
+) -> xr.Dataset:
     """Rebuilt vs simulated values on the validation states and their metrics."""
     pv = rbf.predict_rbf(model, x_val)
     for k, v in validation_metrics(pv, y_val).items():
@@ -120,8 +126,9 @@ def _damage_vars(out: xr.Dataset, n_hours: int, fs: fatigue.FatigueSettings) -> 
     return out
 
 
-def _uncertainty_vars(out: xr.Dataset, model: rbf.RBFModel, hp: np.ndarray, scale: np.ndarray,
-                      n_suggest: int) -> xr.Dataset:
+def _uncertainty_vars(
+    out: xr.Dataset, model: rbf.RBFModel, hp: np.ndarray, scale: np.ndarray, n_suggest: int
+) -> xr.Dataset:
     """Error indicator per hour and the adaptive-selection suggestions."""
     ind, dist = error_indicator(model, hp, scale)
     out["nearest_distance"] = (names.TIME, dist, _a("normalised distance to the nearest training state"))
@@ -187,8 +194,12 @@ def reconstruct_lifecycle(
     lo, span = _selection_scaling(cases)
     model = fit_outputs(x[train], y[train], cols, settings, lo=lo, span=span)
     labels = [_label(c) for c in cols]
-    log.info("RBF fitted on %d training states, %d outputs; shapes %s", int(train.sum()), len(cols),
-             {lab: round(float(q), 4) for lab, q in zip(labels, model.shape)})
+    log.info(
+        "RBF fitted on %d training states, %d outputs; shapes %s",
+        int(train.sum()),
+        len(cols),
+        {lab: round(float(q), 4) for lab, q in zip(labels, model.shape)},
+    )
 
     hp = _points(hindcast, names.TIME)
     pred = rbf.predict_rbf(model, hp, chunk_rows=settings.chunk_rows)
@@ -199,16 +210,24 @@ def reconstruct_lifecycle(
     if is_dmg.any():
         neg = pred[:, is_dmg] < 0
         if neg.any():
-            log.warning("%d rebuilt hourly damages are negative (RBF undershoot); clipped to 0 in the sums",
-                        int(neg.sum()))
+            log.warning(
+                "%d rebuilt hourly damages are negative (RBF undershoot); clipped to 0 in the sums", int(neg.sum())
+            )
 
     out = out.assign_coords(output=labels, metocean_var=list(names.METOCEAN_VARS))
     out = _fit_vars(out, model, x[train], common[train])
     if valid.any():
         out = _validation_vars(out, model, x[valid], y[valid], common[valid])
         if compare_transforms and is_dmg.any():
-            alt = fit_outputs(x[train], y[train][:, is_dmg], [c for c, d in zip(cols, is_dmg) if d], settings,
-                              lo=lo, span=span, log_damage=not settings.log_damage)
+            alt = fit_outputs(
+                x[train],
+                y[train][:, is_dmg],
+                [c for c, d in zip(cols, is_dmg) if d],
+                settings,
+                lo=lo,
+                span=span,
+                log_damage=not settings.log_damage,
+            )
             am = validation_metrics(rbf.predict_rbf(alt, x[valid]), y[valid][:, is_dmg])
             other = "linear" if settings.log_damage else "log10"
             for k in ("r", "rmse", "sum_error"):
@@ -220,15 +239,17 @@ def reconstruct_lifecycle(
     out = _damage_vars(out, n_hours, fatigue.fatigue_settings(fatigue_cfg))
     scale = np.where(model.log_output, 1.0, np.std(y[train], axis=0))
     out = _uncertainty_vars(out, model, hp, scale, n_suggest)
-    out.attrs.update({
-        "n_hours": int(n_hours),
-        "n_years": float(n_hours / HOURS_PER_YEAR),
-        "n_train": int(train.sum()),
-        "n_validate": int(valid.sum()),
-        "rbf_shape_mode": settings.shape_mode,
-        "rbf_log_damage": int(settings.log_damage),
-        "mooring_system": str(sims.attrs.get("mooring_system", "")),
-    })
+    out.attrs.update(
+        {
+            "n_hours": int(n_hours),
+            "n_years": float(n_hours / HOURS_PER_YEAR),
+            "n_train": int(train.sum()),
+            "n_validate": int(valid.sum()),
+            "rbf_shape_mode": settings.shape_mode,
+            "rbf_log_damage": int(settings.log_damage),
+            "mooring_system": str(sims.attrs.get("mooring_system", "")),
+        }
+    )
     return out
 
 
@@ -255,10 +276,12 @@ def discrete_damage_table(discrete_states: xr.Dataset, discrete_sims: xr.Dataset
         raise ValueError(f"discrete.zarr: {discrete_states.sizes[b] - common.size} bin(s) were not simulated")
     p = discrete_states["probability"].sel({b: common}).values
     curves = [c for c in names.CURVES if DAMAGE_VARS[c] in discrete_sims]
-    vals = np.stack([
-        discrete_damage(p, discrete_sims[DAMAGE_VARS[c]].sel({b: common}).transpose(b, names.LINE).values, n_hours)
-        for c in curves
-    ])
+    vals = np.stack(
+        [
+            discrete_damage(p, discrete_sims[DAMAGE_VARS[c]].sel({b: common}).transpose(b, names.LINE).values, n_hours)
+            for c in curves
+        ]
+    )
     return xr.Dataset(
         {"discrete_damage": ((names.CURVE, names.LINE), vals, {"units": "1", "long_name": "sum_b p_b d_b hours"})},
         coords={names.CURVE: curves, names.LINE: discrete_sims[names.LINE].values},
@@ -308,8 +331,11 @@ def summary_table(
         row0 = mooring.loc[ms]
         for curve in [str(c) for c in lc[names.CURVE].values]:
             o_idx = [lab for lab in lc["output"].values if str(lab).startswith(DAMAGE_VARS[curve])]
-            rel_err = float(np.nanmax(np.abs(lc["validation_sum_error"].sel(output=o_idx).values))) if (
-                "validation_sum_error" in lc and o_idx) else 0.0
+            rel_err = (
+                float(np.nanmax(np.abs(lc["validation_sum_error"].sel(output=o_idx).values)))
+                if ("validation_sum_error" in lc and o_idx)
+                else 0.0
+            )
             cv = float((seed_cv or {}).get(curve, 0.0))
             for line in [str(v) for v in lc[names.LINE].values]:
                 sel = {names.CURVE: curve, names.LINE: line}
@@ -335,15 +361,25 @@ def summary_table(
                     "utilisation": float(lc["utilisation"].sel(sel)),
                     "passes": bool(lc["passes"].sel(sel)),
                     "surge_mpm_max": float(lc["surge_mpm"].max()) if "surge_mpm" in lc else np.nan,
-                    "tension_mpm_max": (float(lc["tension_mpm"].sel({names.LINE: line}).max())
-                                        if "tension_mpm" in lc else np.nan),
+                    "tension_mpm_max": (
+                        float(lc["tension_mpm"].sel({names.LINE: line}).max()) if "tension_mpm" in lc else np.nan
+                    ),
                 }
                 if corrosion is not None:
                     life_years = float(lc.attrs.get("design_life_years", corrosion.design_life))
-                    mean_t = (float(lc["tension_mean"].sel({names.LINE: line}).mean()) if "tension_mean" in lc
-                              else float(row0["pretension_kN"]) * 1e3)
-                    ev = corrosion_evolution(row["damage_per_year"], float(row0["link_diameter_mm"]) * 1e-3, life_years,
-                                             curve=curve, settings=corrosion, mean_tension=mean_t)
+                    mean_t = (
+                        float(lc["tension_mean"].sel({names.LINE: line}).mean())
+                        if "tension_mean" in lc
+                        else float(row0["pretension_kN"]) * 1e3
+                    )
+                    ev = corrosion_evolution(
+                        row["damage_per_year"],
+                        float(row0["link_diameter_mm"]) * 1e-3,
+                        life_years,
+                        curve=curve,
+                        settings=corrosion,
+                        mean_tension=mean_t,
+                    )
                     row["design_life_damage_corroded"] = float(ev["corroded"][-1])
                     row["utilisation_corroded"] = row["design_fatigue_factor"] * row["design_life_damage_corroded"]
                     row["passes"] = bool(row["utilisation_corroded"] <= 1.0)

@@ -93,17 +93,26 @@ def fit_outputs(
             if bad.any():  # a calm state with no counted cycle: floor at the smallest positive damage
                 pos = values[values[:, j] > 0, j]
                 floor = pos.min() if pos.size else 1e-30
-                log.warning("%s: %d non-positive damage value(s) floored at %.3g for the log transform",
-                            _label(cols[j]), int(bad.sum()), floor)
+                log.warning(
+                    "%s: %d non-positive damage value(s) floored at %.3g for the log transform",
+                    _label(cols[j]),
+                    int(bad.sum()),
+                    floor,
+                )
                 values[bad, j] = floor
     mask = direction_mask()
     common = dict(is_direction=mask, log_output=logs, smoothing=settings.smoothing, lo=lo, span=span)
     if settings.shape_mode == "fixed":
-        q = np.array([
-            settings.fixed_damage if c[0].startswith("damage")
-            else settings.fixed_tension if c[0].startswith("tension") else settings.fixed_other
-            for c in cols
-        ])
+        q = np.array(
+            [
+                settings.fixed_damage
+                if c[0].startswith("damage")
+                else settings.fixed_tension
+                if c[0].startswith("tension")
+                else settings.fixed_other
+                for c in cols
+            ]
+        )
         return rbf.fit_rbf(points, values, shape=q, **common)
     grid = rbf.shape_grid(settings.grid_min, settings.grid_max, settings.grid_n)
     return rbf.fit_rbf(points, values, shapes=grid, share_tol=settings.share_tol, **common)

@@ -66,9 +66,15 @@ def corrosion_evolution(
 
     def factor(ages: np.ndarray) -> np.ndarray:
         return fatigue.corrosion_damage_factor(
-            link_diameter, ages, curve=curve, m=m, rate=settings.corrosion_rate,
-            mean_stress=settings.mean_stress, mean_tension=mean_tension,
-            ultimate=settings.ultimate, yield_=settings.yield_,
+            link_diameter,
+            ages,
+            curve=curve,
+            m=m,
+            rate=settings.corrosion_rate,
+            mean_stress=settings.mean_stress,
+            mean_tension=mean_tension,
+            ultimate=settings.ultimate,
+            yield_=settings.yield_,
         )
 
     ages, cum = fatigue.lifetime_damage_with_corrosion(
@@ -77,8 +83,13 @@ def corrosion_evolution(
     return {"years": ages, "corroded": cum, "intact": per_year * ages, "factor": np.asarray(factor(ages[:-1]))}
 
 
-def mean_stress_table(mooring: pd.DataFrame, mean_tension: Mapping[str, float] | None = None,
-                      *, ultimate: float = 960.0, yield_: float = 700.0) -> pd.DataFrame:
+def mean_stress_table(
+    mooring: pd.DataFrame,
+    mean_tension: Mapping[str, float] | None = None,
+    *,
+    ultimate: float = 960.0,
+    yield_: float = 700.0,
+) -> pd.DataFrame:
     """Mean-stress correction ratios per mooring system (paper Table 8).
 
     Parameters

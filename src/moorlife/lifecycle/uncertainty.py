@@ -48,7 +48,10 @@ def _typical_spacing(model: rbf.RBFModel) -> float:
 
 
 def suggest_states(
-    model: rbf.RBFModel, points: npt.ArrayLike, indicator: npt.ArrayLike, n: int,
+    model: rbf.RBFModel,
+    points: npt.ArrayLike,
+    indicator: npt.ArrayLike,
+    n: int,
     distance: npt.ArrayLike | None = None,
 ) -> np.ndarray:
     """Adaptive selection: the ``n`` hours to simulate next, greedily, most uncertain first.

@@ -202,7 +202,6 @@ class CleaningPolicy(_Record):
     limits: PlausibleLimits
 
 
-
 _NESTED: dict[str, type[_Record]] = {
     c.__name__: c for c in (SwellParams, StormParams, WindParams, WindSeaParams, PlausibleLimits)
 }

@@ -126,9 +126,7 @@ def annual_cycle(time: np.ndarray, peak_day: float) -> np.ndarray:
     return np.cos(2.0 * np.pi * (doy - (peak_day - 1.0)) * 24.0 / _HOURS_PER_YEAR)
 
 
-def storm_pulses(
-    rng: np.random.Generator, season: np.ndarray, p: StormParams
-) -> tuple[np.ndarray, np.ndarray]:
+def storm_pulses(rng: np.random.Generator, season: np.ndarray, p: StormParams) -> tuple[np.ndarray, np.ndarray]:
     """Storm intensity and storm direction, hourly.
 
     Storm peaks occur as a Poisson process of rate ``rate_per_year * (1 + a * season)``

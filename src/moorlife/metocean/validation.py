@@ -131,7 +131,9 @@ def validate_hindcast(
                 f"{source}: column 'time', row {int(rows[i])}: {pd.Timestamp(times[i])} comes after "
                 f"{pd.Timestamp(times[i - 1])} (timestamps not sorted; set hindcast.cleaning.unsorted: sort)"
             )
-        log.warning("%s: timestamps not sorted (first at row %d); sorted them (cleaning.unsorted = sort)", source, rows[i])
+        log.warning(
+            "%s: timestamps not sorted (first at row %d); sorted them (cleaning.unsorted = sort)", source, rows[i]
+        )
         times, data, rows = times[order], data.iloc[order], rows[order]
     dup = np.concatenate([[False], np.diff(times.astype("int64")) == 0])
     if dup.any():
@@ -141,7 +143,9 @@ def validate_hindcast(
                 f"{source}: column 'time', row {int(rows[i])}: duplicated timestamp {pd.Timestamp(times[i])} "
                 "(set hindcast.cleaning.duplicates: first to keep the first)"
             )
-        log.warning("%s: %d duplicated timestamps (first at row %d); kept the first of each", source, dup.sum(), rows[i])
+        log.warning(
+            "%s: %d duplicated timestamps (first at row %d); kept the first of each", source, dup.sum(), rows[i]
+        )
         times, data, rows = times[~dup], data.iloc[~dup], rows[~dup]
     step = np.diff(times).astype("timedelta64[h]").astype(np.int64)
     if times.size > 1:
@@ -184,7 +188,12 @@ def validate_hindcast(
             out[v] = _interp_gaps(out[v].to_numpy(), v in ("wave_dir", "wind_dir"))
             log.warning(
                 "%s: column '%s': interpolated %d gap(s), %d hour(s) in all, first at %s (max_gap_hours = %d)",
-                source, lab[v], starts.size, int(lengths.sum()), full[int(starts[0])].isoformat(), policy.max_gap_hours,
+                source,
+                lab[v],
+                starts.size,
+                int(lengths.sum()),
+                full[int(starts[0])].isoformat(),
+                policy.max_gap_hours,
             )
     return out.astype(float)
 
@@ -226,7 +235,9 @@ def _check_values(
         bad = np.flatnonzero(vals["wind_speed"] < 0.0)
         if bad.size:
             i = int(bad[0])
-            raise HindcastError(f"{_where(source, 'wind_speed', lab['wind_speed'], rows, times, i)}: value {vals['wind_speed'][i]:g} is negative")
+            raise HindcastError(
+                f"{_where(source, 'wind_speed', lab['wind_speed'], rows, times, i)}: value {vals['wind_speed'][i]:g} is negative"
+            )
     for v in ("wave_dir", "wind_dir"):
         if v not in vals:
             continue
@@ -244,7 +255,9 @@ def _check_values(
                     f"{_where(source, v, lab[v], rows, times, i)}: direction {x[i]:g} is outside [0, 360) "
                     f"({bad.size} such row(s); set hindcast.cleaning.wrap_directions: true to wrap them)"
                 )
-            log.warning("%s: column '%s': wrapped %d direction(s) outside [0, 360) modulo 360", source, lab[v], bad.size)
+            log.warning(
+                "%s: column '%s': wrapped %d direction(s) outside [0, 360) modulo 360", source, lab[v], bad.size
+            )
             vals[v] = np.where(np.isfinite(x), x % 360.0, x)
         fin = x[np.isfinite(x)]
         if fin.size >= 24 and fin.max() <= 2.0 * np.pi + 1e-9 and np.ptp(fin) > 1.0:

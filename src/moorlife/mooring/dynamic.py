@@ -103,7 +103,6 @@ GAMMA = 1.0 + 1.0 / math.sqrt(2.0)
 CONTACT_BAND = 0.01
 
 
-
 @dataclass(frozen=True)
 class LineModel:
     """Discretised line: the parameter vector of the numba kernels.
@@ -564,20 +563,35 @@ def node_forces(model: LineModel, r: np.ndarray, v: np.ndarray) -> tuple[np.ndar
         Mass plus added mass, kg.
     """
     buf = _workspace(model.n_segments)
-    F, tang, am, bm = _node_forces_flat(np.ascontiguousarray(r, float), np.ascontiguousarray(v, float), model.params, buf)
+    F, tang, am, bm = _node_forces_flat(
+        np.ascontiguousarray(r, float), np.ascontiguousarray(v, float), model.params, buf
+    )
     M = am[:, None, None] * np.eye(3) + bm[:, None, None] * tang[:, :, None] * tang[:, None, :]
     return F, M
 
 
-def hermite(p0: np.ndarray, v0: np.ndarray, p1: np.ndarray, v1: np.ndarray, T: float, s: float) -> tuple[np.ndarray, np.ndarray]:
+def hermite(
+    p0: np.ndarray, v0: np.ndarray, p1: np.ndarray, v1: np.ndarray, T: float, s: float
+) -> tuple[np.ndarray, np.ndarray]:
     """Cubic Hermite interpolation of a 3-D motion, position and velocity at fraction ``s``."""
     pos = np.empty(3)
     vel = np.empty(3)
-    _hermite(np.asarray(p0, float), np.asarray(v0, float), np.asarray(p1, float), np.asarray(v1, float), float(T), float(s), pos, vel)
+    _hermite(
+        np.asarray(p0, float),
+        np.asarray(v0, float),
+        np.asarray(p1, float),
+        np.asarray(v1, float),
+        float(T),
+        float(s),
+        pos,
+        vel,
+    )
     return pos, vel
 
 
-def initial_nodes(model: LineModel, anchor: np.ndarray, fairlead: np.ndarray, length: float, props: LineProperties) -> np.ndarray:
+def initial_nodes(
+    model: LineModel, anchor: np.ndarray, fairlead: np.ndarray, length: float, props: LineProperties
+) -> np.ndarray:
     """Node positions ``(N + 1, 3)`` on the static frictionless catenary between anchor and fairlead."""
     p = model.params
     N = int(p[_N])
@@ -605,14 +619,18 @@ class DynamicMooring:
 
     kind = "dynamic"
 
-    def __init__(self, model: LineModel, props: LineProperties, layout: Layout, settings: MooringSettings, batch: int) -> None:
+    def __init__(
+        self, model: LineModel, props: LineProperties, layout: Layout, settings: MooringSettings, batch: int
+    ) -> None:
         self.model = model
         self.props = props
         self.layout = layout
         self.settings = settings
         self.batch = int(batch)
         #: The line model as :func:`step_lines` takes it.
-        self.kernel = LineKernel(model.params, _workspace(model.n_segments), {"ros2": 0, "bdf2": 1}[settings.integrator])
+        self.kernel = LineKernel(
+            model.params, _workspace(model.n_segments), {"ros2": 0, "bdf2": 1}[settings.integrator]
+        )
         self._w = self.kernel.work
         self._kernel_args = tuple(self.kernel)
 
@@ -629,13 +647,22 @@ class DynamicMooring:
         r = np.empty((B, L, N + 1, 3))
         for b in range(B):
             for k in range(L):
-                r[b, k] = initial_nodes(self.model, self.layout.anchors[k], r_fair[b, k], self.layout.length, self.props)
+                r[b, k] = initial_nodes(
+                    self.model, self.layout.anchors[k], r_fair[b, k], self.layout.length, self.props
+                )
         tol = 1e-6 * self.props.wet_weight * self.layout.length
         for b in range(B):
             for k in range(L):
                 _static_solve_flat(r[b, k], self.model.params, self._w, 200, tol)
-        state = DynamicState(r=r, v=np.zeros_like(r), forces=np.zeros((B, L, 3)), tension=np.zeros((B, L)),
-                             r_prev=r.copy(), v_prev=np.zeros_like(r), step_prev=np.zeros((B, L)))
+        state = DynamicState(
+            r=r,
+            v=np.zeros_like(r),
+            forces=np.zeros((B, L, 3)),
+            tension=np.zeros((B, L)),
+            r_prev=r.copy(),
+            v_prev=np.zeros_like(r),
+            step_prev=np.zeros((B, L)),
+        )
         relax = self.settings.relaxation_time if relax is None else float(relax)
         zero = np.zeros((B, L, 3))
         fixed = np.ascontiguousarray(r_fair)
@@ -670,7 +697,9 @@ class DynamicMooring:
             _step_batch(tuple(state), r_fair, v_fair, float(dt), nsub, self._kernel_args)
         except FloatingPointError:
             bad = np.argwhere(~np.isfinite(r_fair).all(axis=-1) | ~np.isfinite(v_fair).all(axis=-1))
-            where = f"non-finite fairlead input at (batch, line) {bad[0].tolist()}" if bad.size else "line state diverged"
+            where = (
+                f"non-finite fairlead input at (batch, line) {bad[0].tolist()}" if bad.size else "line state diverged"
+            )
             raise FloatingPointError(
                 f"dynamic mooring ({self.props.name}): non-finite fairlead tension; {where} (dt = {dt} s)"
             ) from None

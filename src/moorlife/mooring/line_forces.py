@@ -196,7 +196,7 @@ def _work_size(N: int) -> int:
 
 @njit(cache=True, error_model="numpy")
 def _take(buf, o, n):
-    return buf[o:o + n], o + n
+    return buf[o : o + n], o + n
 
 
 @njit(cache=True, error_model="numpy")
@@ -212,8 +212,18 @@ def _stage_views(buf, o, N):
     bm, o = _take(buf, o, n1)
     C, o = _take(buf, o, 9 * n1)
     Kz, o = _take(buf, o, n1)
-    ws = (F.reshape((n1, 3)), segf, sq.reshape((N, 3)), sa, sg, tang.reshape((n1, 3)), am, bm,
-          C.reshape((n1, 3, 3)), Kz)
+    ws = (
+        F.reshape((n1, 3)),
+        segf,
+        sq.reshape((N, 3)),
+        sa,
+        sg,
+        tang.reshape((n1, 3)),
+        am,
+        bm,
+        C.reshape((n1, 3, 3)),
+        Kz,
+    )
     return ws, o
 
 
@@ -241,9 +251,22 @@ def _views(buf, N):
     v2, o = _take(buf, o, 3 * n1)
     tmp3, o = _take(buf, o, 3)
     vec, o = _take(buf, o, 18)
-    w = (ws1, ws2, S.reshape((N, 3, 3)), Winv.reshape((n1, 3, 3)), D.reshape((3, 3)), tmpm.reshape((3, 3)),
-         rhs.reshape((n1, 3)), kx1.reshape((n1, 3)), kv1.reshape((n1, 3)), kx2.reshape((n1, 3)),
-         kv2.reshape((n1, 3)), r2.reshape((n1, 3)), v2.reshape((n1, 3)), tmp3)
+    w = (
+        ws1,
+        ws2,
+        S.reshape((N, 3, 3)),
+        Winv.reshape((n1, 3, 3)),
+        D.reshape((3, 3)),
+        tmpm.reshape((3, 3)),
+        rhs.reshape((n1, 3)),
+        kx1.reshape((n1, 3)),
+        kv1.reshape((n1, 3)),
+        kx2.reshape((n1, 3)),
+        kv2.reshape((n1, 3)),
+        r2.reshape((n1, 3)),
+        v2.reshape((n1, 3)),
+        tmp3,
+    )
     return w, vec.reshape((6, 3))
 
 

@@ -217,8 +217,18 @@ def _lookup(XF, ZF, x0, z0, dx, dz, H, V, L, EA, w, CB):
         return h, v
     tx = fx - i
     tz = fz - j
-    h = (1 - tx) * (1 - tz) * H[i, j] + tx * (1 - tz) * H[i + 1, j] + (1 - tx) * tz * H[i, j + 1] + tx * tz * H[i + 1, j + 1]
-    v = (1 - tx) * (1 - tz) * V[i, j] + tx * (1 - tz) * V[i + 1, j] + (1 - tx) * tz * V[i, j + 1] + tx * tz * V[i + 1, j + 1]
+    h = (
+        (1 - tx) * (1 - tz) * H[i, j]
+        + tx * (1 - tz) * H[i + 1, j]
+        + (1 - tx) * tz * H[i, j + 1]
+        + tx * tz * H[i + 1, j + 1]
+    )
+    v = (
+        (1 - tx) * (1 - tz) * V[i, j]
+        + tx * (1 - tz) * V[i + 1, j]
+        + (1 - tx) * tz * V[i, j + 1]
+        + tx * tz * V[i + 1, j + 1]
+    )
     return h, v
 
 
@@ -295,7 +305,9 @@ def catenary_solve(
         If Newton's method does not converge (naming the span and height).
     """
     tol = 1e-9 * length if tol is None else tol
-    H, V, ok = _solve_robust(float(span), float(height), float(length), float(EA), float(w), float(friction), 0.0, 0.0, tol)
+    H, V, ok = _solve_robust(
+        float(span), float(height), float(length), float(EA), float(w), float(friction), 0.0, 0.0, tol
+    )
     if not ok:
         raise RuntimeError(f"catenary did not converge for span={span} m, height={height} m, length={length} m")
     return float(H), float(V)
@@ -352,7 +364,9 @@ def catenary_profile(s: np.ndarray, H: float, V: float, length: float, EA: float
     if V >= w * length:
         Va = V - w * length
         out[:, 0] = H / w * (np.arcsinh((Va + w * s) / H) - np.arcsinh(Va / H)) + H * s / EA
-        out[:, 1] = H / w * (np.sqrt(1 + ((Va + w * s) / H) ** 2) - np.sqrt(1 + (Va / H) ** 2)) + (Va * s + 0.5 * w * s**2) / EA
+        out[:, 1] = (
+            H / w * (np.sqrt(1 + ((Va + w * s) / H) ** 2) - np.sqrt(1 + (Va / H) ** 2)) + (Va * s + 0.5 * w * s**2) / EA
+        )
         return out
     LB = length - V / w
     on = s <= LB
@@ -412,7 +426,10 @@ def table_lookup(table: ForceTable, span: np.ndarray, height: np.ndarray) -> tup
 
 
 def fairlead_forces(
-    table: ForceTable, anchors: np.ndarray, r_fair: np.ndarray, forces: np.ndarray | None = None,
+    table: ForceTable,
+    anchors: np.ndarray,
+    r_fair: np.ndarray,
+    forces: np.ndarray | None = None,
     tension: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Force on the platform at each fairlead from the force-displacement surface.
@@ -443,8 +460,9 @@ def fairlead_forces(
     return QuasiStaticState(forces, tension)
 
 
-def line_stiffness(span: float, height: float, direction: np.ndarray, props: LineProperties, length: float,
-                   friction: float = 0.0) -> np.ndarray:
+def line_stiffness(
+    span: float, height: float, direction: np.ndarray, props: LineProperties, length: float, friction: float = 0.0
+) -> np.ndarray:
     """3x3 stiffness ``-dF/dr`` (N/m) of one line's force on the platform w.r.t. its fairlead.
 
     Parameters

@@ -34,11 +34,25 @@ __all__ = [
 CONTRACT_OUTPUTS: tuple[str, ...] = names.SIM_SCALAR_VARS + names.SIM_LINE_VARS
 LINE_COLOURS = {"M1": "tab:blue", "M2": "tab:red", "M3": "tab:green"}
 CURVE_LABEL = {"sn": "S-N (DNVGL-OS-E301)", "tn": "T-N (API RP 2SK)"}
-_UNITS = {"surge_mpm": "m", "sway_mpm": "m", "heave_mpm": "m", "tension_mpm": "kN", "damage_sn": "1/h",
-          "damage_tn": "1/h", "accel_mpm": "m/s$^2$", "accel_p90": "m/s$^2$", "accel_p95": "m/s$^2$",
-          "accel_p99": "m/s$^2$"}
-_METOCEAN_LABEL = {"wind_speed": "W (m/s)", "wind_dir": r"$\beta$ wind from (deg)", "hs": "Hs (m)",
-                   "tp": "Tp (s)", "wave_dir": r"$\alpha$ waves from (deg)"}
+_UNITS = {
+    "surge_mpm": "m",
+    "sway_mpm": "m",
+    "heave_mpm": "m",
+    "tension_mpm": "kN",
+    "damage_sn": "1/h",
+    "damage_tn": "1/h",
+    "accel_mpm": "m/s$^2$",
+    "accel_p90": "m/s$^2$",
+    "accel_p95": "m/s$^2$",
+    "accel_p99": "m/s$^2$",
+}
+_METOCEAN_LABEL = {
+    "wind_speed": "W (m/s)",
+    "wind_dir": r"$\beta$ wind from (deg)",
+    "hs": "Hs (m)",
+    "tp": "Tp (s)",
+    "wave_dir": r"$\alpha$ waves from (deg)",
+}
 
 
 def _grid(n: int, ncols: int, size: float = 2.6) -> tuple[Figure, np.ndarray]:
@@ -104,8 +118,14 @@ def loo_error_map(ds: xr.Dataset, title: str = "") -> Figure:
         y = pts.sel(metocean_var=yv).values
         sc = ax.scatter(x, y, c=err, s=10, cmap="viridis", vmin=0, vmax=float(np.quantile(err, 0.98)) or 1.0)
         if sugg.size:
-            ax.scatter(ds[xv].values[sugg], ds[yv].values[sugg], marker="x", color="tab:red", s=25,
-                       label=f"{sugg.size} suggested next states")
+            ax.scatter(
+                ds[xv].values[sugg],
+                ds[yv].values[sugg],
+                marker="x",
+                color="tab:red",
+                s=25,
+                label=f"{sugg.size} suggested next states",
+            )
             ax.legend(fontsize=7, loc="upper right")
         ax.set_xlabel(_METOCEAN_LABEL[xv])
         ax.set_ylabel(_METOCEAN_LABEL[yv])
@@ -132,7 +152,9 @@ def binned_damage(values: np.ndarray, damage: np.ndarray, edges: np.ndarray) -> 
     """
     idx = np.clip(np.digitize(values, edges) - 1, 0, edges.size - 2)
     count = np.bincount(idx, minlength=edges.size - 1).astype(float)
-    sums = np.stack([np.bincount(idx, weights=damage[:, j], minlength=edges.size - 1) for j in range(damage.shape[1])], 1)
+    sums = np.stack(
+        [np.bincount(idx, weights=damage[:, j], minlength=edges.size - 1) for j in range(damage.shape[1])], 1
+    )
     with np.errstate(invalid="ignore", divide="ignore"):
         mean = sums / count[:, None]
         share = 100.0 * sums / sums.sum(axis=0)
@@ -154,8 +176,13 @@ def damage_vs_metocean(ds: xr.Dataset, title: str = "", curve: str = "sn") -> Fi
         mid = 0.5 * (edges[1:] + edges[:-1])
         for k, ln in enumerate(lines):
             axes[0, j].plot(mid, mean[:, k], marker=".", color=LINE_COLOURS.get(ln), label=ln)
-            axes[1, j].bar(mid + (k - 1) * np.diff(edges)[0] / 4, share[:, k], width=np.diff(edges)[0] / 4,
-                           color=LINE_COLOURS.get(ln), label=ln)
+            axes[1, j].bar(
+                mid + (k - 1) * np.diff(edges)[0] / 4,
+                share[:, k],
+                width=np.diff(edges)[0] / 4,
+                color=LINE_COLOURS.get(ln),
+                label=ln,
+            )
         axes[0, j].set_yscale("log")
         axes[1, j].set_xlabel(_METOCEAN_LABEL[mv])
     axes[0, 0].set_ylabel("mean hourly damage")
@@ -174,12 +201,30 @@ def damage_vs_mass(table: pd.DataFrame) -> Figure:
         sub = table[table["curve"] == c]
         for ln, g in sub.groupby("line"):
             g = g.sort_values("mass_kg_per_m")
-            ax.plot(g["mass_kg_per_m"], g["lifecycle_damage"], marker="o", color=LINE_COLOURS.get(ln), label=f"{ln} life cycle")
-            ax.plot(g["mass_kg_per_m"], g["discrete_damage"], marker="s", ls="--", mfc="none",
-                    color=LINE_COLOURS.get(ln), label=f"{ln} discrete matrix")
+            ax.plot(
+                g["mass_kg_per_m"],
+                g["lifecycle_damage"],
+                marker="o",
+                color=LINE_COLOURS.get(ln),
+                label=f"{ln} life cycle",
+            )
+            ax.plot(
+                g["mass_kg_per_m"],
+                g["discrete_damage"],
+                marker="s",
+                ls="--",
+                mfc="none",
+                color=LINE_COLOURS.get(ln),
+                label=f"{ln} discrete matrix",
+            )
         for ms, g in sub.groupby("mooring_system"):
-            ax.annotate(ms, (g["mass_kg_per_m"].iloc[0], g["lifecycle_damage"].max()), fontsize=7,
-                        textcoords="offset points", xytext=(2, 4))
+            ax.annotate(
+                ms,
+                (g["mass_kg_per_m"].iloc[0], g["lifecycle_damage"].max()),
+                fontsize=7,
+                textcoords="offset points",
+                xytext=(2, 4),
+            )
         ax.set_yscale("log")
         ax.set_xlabel("line mass (kg/m)")
         ax.set_ylabel("damage over the hindcast")
@@ -200,7 +245,9 @@ def difference_bars(table: pd.DataFrame) -> Figure:
         sub = table[table["curve"] == c]
         lines = sorted(set(sub["line"]))
         for k, ln in enumerate(lines):
-            vals = [float(sub[(sub.mooring_system == ms) & (sub.line == ln)]["difference_pct"].iloc[0]) for ms in systems]
+            vals = [
+                float(sub[(sub.mooring_system == ms) & (sub.line == ln)]["difference_pct"].iloc[0]) for ms in systems
+            ]
             ax.bar(x + (k - 1) * 0.27, vals, width=0.27, color=LINE_COLOURS.get(ln), label=ln)
         ax.axhline(0, color="k", lw=0.7)
         ax.set_xticks(x, systems)
@@ -237,7 +284,9 @@ def recommendation_table(table: pd.DataFrame, rec: Mapping[str, Any]) -> Figure:
         row = [ms, f"{g['mass_kg_per_m'].iloc[0]:.1f}"]
         for c in ("sn", "tn"):
             gc = g[g.curve == c]
-            row += [f"{gc['fatigue_life_years'].min():.1f}", f"{gc['utilisation'].max():.2f}"] if len(gc) else ["-", "-"]
+            row += (
+                [f"{gc['fatigue_life_years'].min():.1f}", f"{gc['utilisation'].max():.2f}"] if len(gc) else ["-", "-"]
+            )
         row.append("pass" if g[g.curve.isin(curves)]["passes"].all() else "fail")
         rows.append(row)
     fig = Figure(figsize=(9, 0.45 * len(rows) + 1.6), layout="constrained")
@@ -266,8 +315,14 @@ def seed_spread(df: pd.DataFrame, title: str = "") -> Figure:
             y = g["life_years"].values
             ax.scatter(np.full(y.size, k) + np.linspace(-0.15, 0.15, y.size), y, color=LINE_COLOURS.get(ln), s=14)
             ax.hlines(y.mean(), k - 0.25, k + 0.25, color="k")
-            ax.annotate(f"mean {y.mean():.2f} y\nspread {np.ptp(y):.2f} y", (k, y.max()), fontsize=7,
-                        textcoords="offset points", xytext=(0, 5), ha="center")
+            ax.annotate(
+                f"mean {y.mean():.2f} y\nspread {np.ptp(y):.2f} y",
+                (k, y.max()),
+                fontsize=7,
+                textcoords="offset points",
+                xytext=(0, 5),
+                ha="center",
+            )
         ax.set_xticks(range(sub["line"].nunique()), sorted(set(sub["line"])))
         if sub["life_years"].max() > 10 * sub["life_years"].min():
             ax.set_yscale("log")
@@ -298,15 +353,25 @@ def corrosion_evolution(df: pd.DataFrame, title: str = "") -> Figure:
 def mean_stress_table(df: pd.DataFrame) -> Figure:
     """Mean-stress correction ratios per system and block (paper Table 8) as a table figure."""
     cols = ["mooring_system", "block", "mean_tension_kN", "mean_stress_mpa", "goodman", "soderberg", "gerber"]
-    fmt = {"mean_tension_kN": "{:.1f}", "mean_stress_mpa": "{:.4f}", "goodman": "{:.4f}", "soderberg": "{:.4f}",
-           "gerber": "{:.4f}"}
-    cells = [[fmt[c].format(r[c]) if c in fmt and np.isfinite(r[c]) else str(r[c]) for c in cols] for _, r in df.iterrows()]
+    fmt = {
+        "mean_tension_kN": "{:.1f}",
+        "mean_stress_mpa": "{:.4f}",
+        "goodman": "{:.4f}",
+        "soderberg": "{:.4f}",
+        "gerber": "{:.4f}",
+    }
+    cells = [
+        [fmt[c].format(r[c]) if c in fmt and np.isfinite(r[c]) else str(r[c]) for c in cols] for _, r in df.iterrows()
+    ]
     fig = Figure(figsize=(9, 0.32 * len(cells) + 1.2), layout="constrained")
     ax = fig.subplots()
     ax.axis("off")
-    tab = ax.table(cellText=cells, colLabels=["system", "block", "mean T (kN)", "mean stress (MPa)", "Goodman",
-                                              "Soderberg", "Gerber"], loc="center", cellLoc="center")
+    tab = ax.table(
+        cellText=cells,
+        colLabels=["system", "block", "mean T (kN)", "mean stress (MPa)", "Goodman", "Soderberg", "Gerber"],
+        loc="center",
+        cellLoc="center",
+    )
     tab.scale(1, 1.25)
     ax.set_title(r"mean-stress correction $\Delta\sigma/\Delta\sigma_0 = 1 - (\sigma_m/\sigma_R)^n$", fontsize=10)
     return fig
-

@@ -45,7 +45,9 @@ def rose_frequencies(
     d = np.asarray(direction, float) % 360.0
     width = 360.0 / n_sectors
     sector = np.floor((d + width / 2.0) / width).astype(int) % n_sectors
-    cls = np.clip(np.searchsorted(np.asarray(edges, float), np.asarray(magnitude, float), side="right") - 1, 0, len(edges) - 1)
+    cls = np.clip(
+        np.searchsorted(np.asarray(edges, float), np.asarray(magnitude, float), side="right") - 1, 0, len(edges) - 1
+    )
     counts = np.zeros((n_sectors, len(edges)))
     np.add.at(counts, (sector, cls), 1.0)
     return 100.0 * counts / max(d.size, 1)
@@ -73,8 +75,16 @@ def plot_rose(
     bottom = np.zeros(n_sectors)
     for j, lo in enumerate(edges):
         hi = f"{edges[j + 1]:g}" if j + 1 < len(edges) else ""
-        ax.bar(theta, freq[:, j], width=width, bottom=bottom, color=colors[j], edgecolor="white", linewidth=0.4,
-               label=f"{lo:g}-{hi} {label}" if hi else f">= {lo:g} {label}")
+        ax.bar(
+            theta,
+            freq[:, j],
+            width=width,
+            bottom=bottom,
+            color=colors[j],
+            edgecolor="white",
+            linewidth=0.4,
+            label=f"{lo:g}-{hi} {label}" if hi else f">= {lo:g} {label}",
+        )
         bottom += freq[:, j]
     ax.set_xticks(np.deg2rad(np.arange(0, 360, 45)), ["N", "NE", "E", "SE", "S", "SW", "W", "NW"])
     ax.yaxis.set_major_formatter("{x:g} %")
@@ -92,7 +102,11 @@ def _site(ds: xr.Dataset) -> str:
 def plot_wind_rose(ds: xr.Dataset, n_sectors: int = 16) -> Figure:
     """Wind rose at hub height (paper Fig. 3): frequency by direction and speed class."""
     return plot_rose(
-        ds["wind_dir"].values, ds["wind_speed"].values, WIND_CLASSES, label="m/s", n_sectors=n_sectors,
+        ds["wind_dir"].values,
+        ds["wind_speed"].values,
+        WIND_CLASSES,
+        label="m/s",
+        n_sectors=n_sectors,
         title=f"Wind at {ds.attrs.get('hub_height', 0):g} m, {_site(ds)}",
     )
 
@@ -100,7 +114,12 @@ def plot_wind_rose(ds: xr.Dataset, n_sectors: int = 16) -> Figure:
 def plot_wave_rose(ds: xr.Dataset, n_sectors: int = 16) -> Figure:
     """Wave rose (paper Fig. 3): frequency by wave direction and Hs class."""
     return plot_rose(
-        ds["wave_dir"].values, ds["hs"].values, HS_CLASSES, label="m", n_sectors=n_sectors, cmap="plasma",
+        ds["wave_dir"].values,
+        ds["hs"].values,
+        HS_CLASSES,
+        label="m",
+        n_sectors=n_sectors,
+        cmap="plasma",
         title=f"Waves (Hs), {_site(ds)}",
     )
 
@@ -119,8 +138,14 @@ def plot_hs_tp(ds: xr.Dataset, bins: int = 120) -> Figure:
     for ax, x, xlab in ((ax1, tp, "Tp [s]"), (ax2, w, "W [m/s] at hub height")):
         xmax = float(np.max(x)) * 1.03
         h, xe, ye = np.histogram2d(x, hs, bins=bins, range=[[0.0, xmax], [0.0, hmax]])
-        mesh = ax.pcolormesh(xe, ye, np.ma.masked_equal(h, 0.0).T, cmap="viridis",
-                             norm=LogNorm(vmin=1, vmax=max(h.max(), 2)), rasterized=True)
+        mesh = ax.pcolormesh(
+            xe,
+            ye,
+            np.ma.masked_equal(h, 0.0).T,
+            cmap="viridis",
+            norm=LogNorm(vmin=1, vmax=max(h.max(), 2)),
+            rasterized=True,
+        )
         ax.set_xlabel(xlab)
         ax.set_ylabel("Hs [m]")
         ax.set_xlim(0.0, xmax)
@@ -130,8 +155,15 @@ def plot_hs_tp(ds: xr.Dataset, bins: int = 120) -> Figure:
     for s, frac in zip(STEEPNESS_LINES, np.linspace(0.92, 0.75, len(STEEPNESS_LINES))):
         ax1.plot(t, s * G_2PI * t**2, "k--", lw=0.9)
         t_lab = min(float(np.sqrt(frac * hmax / (s * G_2PI))), t[-1])
-        ax1.annotate(f"s = 1/{1 / s:.0f}", (t_lab, s * G_2PI * t_lab**2), fontsize=8, ha="right", va="center",
-                     xytext=(-4, 0), textcoords="offset points")
+        ax1.annotate(
+            f"s = 1/{1 / s:.0f}",
+            (t_lab, s * G_2PI * t_lab**2),
+            fontsize=8,
+            ha="right",
+            va="center",
+            xytext=(-4, 0),
+            textcoords="offset points",
+        )
     fig.colorbar(mesh, ax=[ax1, ax2], label="hours per bin")
     fig.suptitle(f"Hs-Tp and Hs-W, {_site(ds)} ({hs.size:,} hours)")
     return fig

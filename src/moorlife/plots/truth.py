@@ -48,7 +48,7 @@ def truth_scatter(cmp: xr.Dataset, *, title: str = "") -> Figure:
         ax.text(0.04, 0.96, text, transform=ax.transAxes, va="top", fontsize=8)
         ax.set_title(lab, fontsize=9)
         ax.tick_params(labelsize=7)
-    for ax in list(axes.flat)[len(labels):]:
+    for ax in list(axes.flat)[len(labels) :]:
         ax.set_visible(False)
     fig.supxlabel("simulated truth")
     fig.supylabel("reconstruction (lifecycle.zarr)")
@@ -67,9 +67,11 @@ def cumulative_damage(cmp: xr.Dataset, *, title: str = "") -> Figure:
         for k, ln in enumerate(lines):
             ax = axes[i, k]
             sel = {names.CURVE: cv, names.LINE: ln}
-            for key, colour, label in (("truth_cumulative", "k", "truth"),
-                                       ("reconstruction_cumulative", "tab:blue", "reconstruction"),
-                                       ("bins_cumulative", "tab:red", "35 bins")):
+            for key, colour, label in (
+                ("truth_cumulative", "k", "truth"),
+                ("reconstruction_cumulative", "tab:blue", "reconstruction"),
+                ("bins_cumulative", "tab:red", "35 bins"),
+            ):
                 ax.plot(x, cmp[key].sel(sel).values, color=colour, lw=1.0, label=label)
             err_r = float(cmp["reconstruction_error_pct"].sel(sel))
             err_b = float(cmp["bins_error_pct"].sel(sel))

@@ -123,9 +123,7 @@ def fit_rbf(
         if np.any(sub <= 0):
             row, col = np.argwhere(sub <= 0)[0]
             out = int(np.flatnonzero(logs)[col])
-            raise ValueError(
-                f"output {out} is log-transformed but row {row} = {sub[row, col]!r} is not positive"
-            )
+            raise ValueError(f"output {out} is log-transformed but row {row} = {sub[row, col]!r} is not positive")
         y = y.copy()
         y[:, logs] = np.log10(sub)
     space = fit_space(x, is_direction, lo=lo, span=span)
@@ -173,4 +171,3 @@ def fit_rbf(
         loo_error=loo,
         smoothing=lam,
     )
-

@@ -24,7 +24,9 @@ _SHIFTER = 6755399441055744.0  # 1.5 * 2**52: x + SHIFTER rounds x to an integer
 
 
 @nb.njit(parallel=True, cache=True)
-def _gaussian_block(d2: np.ndarray, inv_q2: float, out: np.ndarray, tmp: np.ndarray) -> None:  # pragma: no cover - numba
+def _gaussian_block(
+    d2: np.ndarray, inv_q2: float, out: np.ndarray, tmp: np.ndarray
+) -> None:  # pragma: no cover - numba
     n, m = d2.shape
     bits = tmp.view(np.int64)
     for i in nb.prange(n):
@@ -76,7 +78,9 @@ def gaussian(d2: npt.ArrayLike, shape: float) -> np.ndarray:
 
 
 @nb.njit(parallel=True, cache=True, fastmath=True)
-def _weighted_sum(k: np.ndarray, w_t: np.ndarray, cols: np.ndarray, out: np.ndarray) -> None:  # pragma: no cover - numba
+def _weighted_sum(
+    k: np.ndarray, w_t: np.ndarray, cols: np.ndarray, out: np.ndarray
+) -> None:  # pragma: no cover - numba
     # out[i, cols[o]] += sum_j k[i, j] * w_t[o, j]; each row by one thread in a fixed order, so
     # the numbers do not depend on the thread count (multi-threaded BLAS may change the last bit).
     n, m = k.shape
@@ -110,4 +114,3 @@ def polynomial_basis(z: npt.ArrayLike, is_direction: npt.ArrayLike) -> np.ndarra
         ang = np.pi * z[:, isdir]
         cols += [np.cos(ang), np.sin(ang)]
     return np.hstack(cols)
-

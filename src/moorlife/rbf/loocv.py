@@ -54,7 +54,6 @@ class LOOCurve:
     rcond: np.ndarray
 
 
-
 def loo_residuals(kernel: np.ndarray, basis: np.ndarray, values: np.ndarray) -> tuple[np.ndarray | None, float]:
     """Rippa's leave-one-out residuals without forming the inverse (the search's inner loop).
 
@@ -87,7 +86,7 @@ def loo_residuals(kernel: np.ndarray, basis: np.ndarray, values: np.ndarray) -> 
     diag = np.einsum("ij,ij->i", uinv, uinv)
     rhs = np.concatenate([values, basis], axis=1)
     sol = sla.cho_solve((chol, False), rhs, check_finite=False)
-    ky, kp = sol[:, :values.shape[1]], sol[:, values.shape[1]:]
+    ky, kp = sol[:, : values.shape[1]], sol[:, values.shape[1] :]
     try:
         g_inv_pt = np.linalg.solve(basis.T @ kp, np.concatenate([kp.T, basis.T @ ky], axis=1))
     except np.linalg.LinAlgError:
@@ -284,4 +283,3 @@ def choose_shapes_and_smoothing(
         )
     idx = choose_candidates(rms, share_tol)
     return q[idx % q.size], lam[idx // q.size]
-

@@ -40,10 +40,10 @@ from moorlife.selection.scatter import (
     DEFAULT_HS_EDGES,
     DEFAULT_TP_EDGES,
     DEFAULT_WIND_EDGES,
-    check_edges,
-    classify,
     ScatterMatrix,
+    check_edges,
     class_labels,
+    classify,
     modal_direction,
     scatter_matrix,
 )

@@ -113,16 +113,20 @@ def select_cases(
     pts = hindcast_points(hindcast, source=source)
     mask = direction_mask()
     if n_train + n_validate > pts.shape[0]:
-        raise ValueError(
-            f"{source}: n_train + n_validate = {n_train + n_validate} exceeds the {pts.shape[0]} hours"
-        )
+        raise ValueError(f"{source}: n_train + n_validate = {n_train + n_validate} exceeds the {pts.shape[0]} hours")
     lo, span = scaling_from(pts, mask)
     i_hs = names.METOCEAN_VARS.index("hs")
     start = int(np.argmax(pts[:, i_hs]))  # the paper: start from the largest Hs
     t0 = _time.perf_counter()
     train = mda(pts, n_train, is_direction=mask, start=start, lo=lo, span=span)
-    _log.info("%s: MDA picked %d of %d states in %.2f s (start: largest hs, row %d)",
-              source, n_train, pts.shape[0], _time.perf_counter() - t0, start)
+    _log.info(
+        "%s: MDA picked %d of %d states in %.2f s (start: largest hs, row %d)",
+        source,
+        n_train,
+        pts.shape[0],
+        _time.perf_counter() - t0,
+        start,
+    )
     stream = np.random.SeedSequence([int(seed), VALIDATION_STREAM_KEY])
     valid = select_validation(
         pts, n_validate, exclude=train, is_direction=mask, rule=rule, seed=stream, lo=lo, span=span

@@ -149,7 +149,6 @@ def mda(
     return np.asarray(picks, dtype=np.int64)
 
 
-
 def _row_keys(points: np.ndarray) -> np.ndarray:
     """One opaque key per row, equal exactly when the rows are bitwise equal."""
     pts = np.ascontiguousarray(points, dtype=np.float64) + 0.0  # -0.0 -> 0.0
@@ -218,4 +217,3 @@ def select_validation(
         )
     rng = np.random.default_rng(seed)
     return np.sort(rng.choice(candidates, size=int(n), replace=False)).astype(np.int64)
-

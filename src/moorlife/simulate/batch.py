@@ -9,10 +9,10 @@ import numpy as np
 
 from moorlife import environment as env
 from moorlife import names
+from moorlife.settings import SimulationSettings, StatisticsSettings
 from moorlife.simulate.forcing import build_forcing
 from moorlife.simulate.integration import integrate
 from moorlife.simulate.model import ModelInputs
-from moorlife.settings import SimulationSettings, StatisticsSettings
 from moorlife.simulate.summary import summarise
 
 __all__ = ["simulate_batch"]
@@ -96,13 +96,13 @@ def simulate_batch(
     wave_ph, wind_ph = env.case_streams(seed, mooring_system, ids, n_bins, stream)
     gamma = env.resolve_gamma(s.gamma, sea["hs"], sea["tp"])
     w_lo, w_hi = float(model.omega.min()), float(model.omega.max())
-    waves = env.wave_components(grid, sea["hs"], sea["tp"], sea["wave_dir"], gamma, wave_ph,
-                                omega_min=w_lo, omega_max=w_hi)
+    waves = env.wave_components(
+        grid, sea["hs"], sea["tp"], sea["wave_dir"], gamma, wave_ph, omega_min=w_lo, omega_max=w_hi
+    )
     wind_cfg = {**s.wind.as_dict(), "height": float(model.hub[2])}
     wind = env.wind_series(grid, sea["wind_speed"], wind_ph, wind_cfg)
     kin_every = max(1, int(round(s.kinematics_dt / s.dt)))
-    forcing = build_forcing(model, grid, waves, wind, sea["wind_dir"], kin_every=kin_every,
-                            second_order=s.second_order)
+    forcing = build_forcing(model, grid, waves, wind, sea["wind_dir"], kin_every=kin_every, second_order=s.second_order)
     record = integrate(model, forcing, transient=s.transient)
     bad = ~np.isfinite(record.motion).all(axis=(1, 2))
     if model.mooring_kind != "linear":
@@ -115,5 +115,11 @@ def simulate_batch(
             f"wind_dir={sea['wind_dir'][b]}; reduce simulation.dt"
         )
     statistics = StatisticsSettings.from_config(stats_cfg, source="statistics")
-    return summarise(record, line_info=model.line_info, fatigue_cfg=fatigue_cfg, statistics=statistics,
-                     mpm_duration=s.mpm_duration, keep_timeseries=s.keep_timeseries)
+    return summarise(
+        record,
+        line_info=model.line_info,
+        fatigue_cfg=fatigue_cfg,
+        statistics=statistics,
+        mpm_duration=s.mpm_duration,
+        keep_timeseries=s.keep_timeseries,
+    )

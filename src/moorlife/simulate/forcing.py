@@ -56,7 +56,8 @@ def _interp_omega(values: np.ndarray, omega: np.ndarray, target: np.ndarray) -> 
     for d in range(values.shape[1]):
         if np.iscomplexobj(values):
             out[:, d] = np.interp(target, omega, values[:, d].real, left=0, right=0) + 1j * np.interp(
-                target, omega, values[:, d].imag, left=0, right=0)
+                target, omega, values[:, d].imag, left=0, right=0
+            )
         else:
             out[:, d] = np.interp(target, omega, values[:, d], left=0, right=0)
     return out
@@ -76,7 +77,7 @@ def _drag_kinematics_tf(model: ModelInputs, k: np.ndarray, omega: np.ndarray, th
     kz = np.minimum(k[:, None] * (z + h), 350.0)
     horiz = omega[:, None] * np.cosh(kz) / np.sinh(kh) * phase
     vert = -1j * omega[:, None] * np.sinh(kz) / np.sinh(kh) * phase
-    wet = (p[None, :, 2] <= 0.0)
+    wet = p[None, :, 2] <= 0.0
     horiz = horiz * wet
     vert = vert * wet
     return np.stack([horiz * c, horiz * s, vert], axis=-1)
@@ -151,5 +152,11 @@ def build_forcing(
                 series = scipy.fft.irfft(spec, n=n_c, axis=-1)
                 flat[:, c0:c1] = series[:, idx].T
     wdir = flow_vector(np.asarray(wind_dir_deg, dtype=float)).reshape(nb, 2)
-    return Forcing(grid=grid, force=force, wind=np.asarray(wind, dtype=float), wind_dir=wdir,
-                   kin_every=int(kin_every), kinematics=kin)
+    return Forcing(
+        grid=grid,
+        force=force,
+        wind=np.asarray(wind, dtype=float),
+        wind_dir=wdir,
+        kin_every=int(kin_every),
+        kinematics=kin,
+    )

@@ -76,8 +76,7 @@ def _run_compiled(moor: Any, mstate: Any, n: int, dt: float, records: tuple) -> 
             _run_dynamic(n, float(dt), moor.substeps(dt), *records, mstate, moor.kernel)
         except FloatingPointError:
             raise FloatingPointError(
-                f"dynamic mooring ({moor.props.name}): non-finite fairlead tension; line state diverged "
-                f"(dt = {dt} s)"
+                f"dynamic mooring ({moor.props.name}): non-finite fairlead tension; line state diverged (dt = {dt} s)"
             ) from None
         return True
     if type(moor) is moor_pkg.QuasiStaticMooring:
@@ -122,8 +121,12 @@ def _kernel_at(model: ModelInputs, dt: float) -> tuple[np.ndarray, int, np.ndarr
     ker = np.stack([np.interp(t, t_src, model.kernel[:, p]) for p in range(model.kernel.shape[1])], axis=1)
     w = np.full(t.size, h)  # trapezoid weights folded in
     w[[0, -1]] *= 0.5
-    return (np.ascontiguousarray((ker * w[:, None])[::-1].T), stride, model.kernel_pairs[:, 0].copy(),
-            model.kernel_pairs[:, 1].copy())
+    return (
+        np.ascontiguousarray((ker * w[:, None])[::-1].T),
+        stride,
+        model.kernel_pairs[:, 0].copy(),
+        model.kernel_pairs[:, 1].copy(),
+    )
 
 
 @dataclass(frozen=True)
@@ -223,18 +226,49 @@ def integrate(
     ker, stride, kpi, kpj = _kernel_at(model, dt)
     hist = np.zeros((nb, stride, 6, 2 * ker.shape[1]))
     static = np.asarray(model.static_load, dtype=float)
-    state = State(displacement=q, velocity=v, radiation=xr, filter=zf, mooring_force=f_prev, held_load=fmoor6,
-                  acceleration=acc, history=hist, fairlead_position=r_f, fairlead_velocity=v_f)
-    body = Body(inverse_mass=minv, stiffness=stiff, damping=model.damping, trim_load=static, hub=model.hub,
-                fairleads=fair)
-    rad = Radiation(ss_row_start=ra[0], ss_column=ra[1], ss_value=ra[2], ss_input=model.rad_b, ss_output=model.rad_c,
-                    kernel=ker, kernel_stride=stride, kernel_force_dof=kpi, kernel_velocity_dof=kpj)
-    strips = Strips(position=np.ascontiguousarray(model.strip_pos.T), axis=np.ascontiguousarray(model.strip_axis.T),
-                    drag_normal=model.strip_cdn, drag_axial=model.strip_cda)
-    rotor = Rotor(wind_speed=model.thrust_speed, thrust=model.thrust_force, filter_a=model.filt_a,
-                  filter_b=model.filt_b, filter_c=model.filt_c, filter_d=model.filt_d)
-    wave = Excitation(force=forcing.force, wind=forcing.wind, wind_dir=forcing.wind_dir, kinematics=kin,
-                      kin_every=forcing.kin_every)
+    state = State(
+        displacement=q,
+        velocity=v,
+        radiation=xr,
+        filter=zf,
+        mooring_force=f_prev,
+        held_load=fmoor6,
+        acceleration=acc,
+        history=hist,
+        fairlead_position=r_f,
+        fairlead_velocity=v_f,
+    )
+    body = Body(
+        inverse_mass=minv, stiffness=stiff, damping=model.damping, trim_load=static, hub=model.hub, fairleads=fair
+    )
+    rad = Radiation(
+        ss_row_start=ra[0],
+        ss_column=ra[1],
+        ss_value=ra[2],
+        ss_input=model.rad_b,
+        ss_output=model.rad_c,
+        kernel=ker,
+        kernel_stride=stride,
+        kernel_force_dof=kpi,
+        kernel_velocity_dof=kpj,
+    )
+    strips = Strips(
+        position=np.ascontiguousarray(model.strip_pos.T),
+        axis=np.ascontiguousarray(model.strip_axis.T),
+        drag_normal=model.strip_cdn,
+        drag_axial=model.strip_cda,
+    )
+    rotor = Rotor(
+        wind_speed=model.thrust_speed,
+        thrust=model.thrust_force,
+        filter_a=model.filt_a,
+        filter_b=model.filt_b,
+        filter_c=model.filt_c,
+        filter_d=model.filt_d,
+    )
+    wave = Excitation(
+        force=forcing.force, wind=forcing.wind, wind_dir=forcing.wind_dir, kinematics=kin, kin_every=forcing.kin_every
+    )
     rec = Recorder(start=j0, motion=motion, accel=accel, tension=tension)
     records = (state, body, rad, strips, rotor, wave, rec)
     if coupled and j0 == 0:

@@ -170,9 +170,17 @@ def _rotation_entries(roll, pitch, yaw):  # pragma: no cover - numba
     cr, sr = math.cos(roll), math.sin(roll)
     cp, sp = math.cos(pitch), math.sin(pitch)
     cy, sy = math.cos(yaw), math.sin(yaw)
-    return (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
-            sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
-            -sp, cp * sr, cp * cr)
+    return (
+        cy * cp,
+        cy * sp * sr - sy * cr,
+        cy * sp * cr + sy * sr,
+        sy * cp,
+        sy * sp * sr + cy * cr,
+        sy * sp * cr - cy * sr,
+        -sp,
+        cp * sr,
+        cp * cr,
+    )
 
 
 @numba.njit(cache=True)
@@ -234,9 +242,16 @@ def _rhs(b, t_frac, j, y, dy, held, F, body, rad, strips, rotor, wave):  # pragm
     """
     nr = rad.ss_input.shape[0]
     ny = 12 + nr + rotor.filter_a.shape[0]
-    q, v, xr, zf = y[0:6], y[6:12], y[12:12 + nr], y[12 + nr:ny]
-    dq, dv, dxr, dzf = dy[0:6], dy[6:12], dy[12:12 + nr], dy[12 + nr:ny]
-    fmoor6, force, wind, wdir, kin, kin_every = held, wave.force, wave.wind, wave.wind_dir, wave.kinematics, wave.kin_every
+    q, v, xr, zf = y[0:6], y[6:12], y[12 : 12 + nr], y[12 + nr : ny]
+    dq, dv, dxr, dzf = dy[0:6], dy[6:12], dy[12 : 12 + nr], dy[12 + nr : ny]
+    fmoor6, force, wind, wdir, kin, kin_every = (
+        held,
+        wave.force,
+        wave.wind,
+        wave.wind_dir,
+        wave.kinematics,
+        wave.kin_every,
+    )
     minv, K, D, hub = body.inverse_mass, body.stiffness, body.damping, body.hub
     ra_ptr, ra_idx, ra_val, rb, rc = rad.ss_row_start, rad.ss_column, rad.ss_value, rad.ss_input, rad.ss_output
     spos, saxis, scdn, scda = strips.position, strips.axis, strips.drag_normal, strips.drag_axial
@@ -390,7 +405,13 @@ def _advance(j, dt, state, body, rad, strips, rotor, wave, moor, rec):  # pragma
     line tension at ``t_{j+1}`` (kept as sample ``i + 1``).
     """
     i = j - rec.start
-    q, v, f_prev, fmoor6, acc = state.displacement, state.velocity, state.mooring_force, state.held_load, state.acceleration
+    q, v, f_prev, fmoor6, acc = (
+        state.displacement,
+        state.velocity,
+        state.mooring_force,
+        state.held_load,
+        state.acceleration,
+    )
     coupled, f_new, ten = moor.coupled, moor.forces, moor.tension
     static, fair, hub = body.trim_load, body.fairleads, body.hub
     motion, accel, tension = rec.motion, rec.accel, rec.tension
@@ -481,8 +502,9 @@ def _run_dynamic(n, dt, nsub, state, body, rad, strips, rotor, wave, rec, lines,
     """
     moor = MooringLink(True, lines.forces, lines.tension)
     for j in range(n):
-        _predict_fairleads(state.displacement, state.velocity, body.fairleads, dt, state.fairlead_position,
-                           state.fairlead_velocity)
+        _predict_fairleads(
+            state.displacement, state.velocity, body.fairleads, dt, state.fairlead_position, state.fairlead_velocity
+        )
         _step_dynamic_lines(lines, state.fairlead_position, state.fairlead_velocity, dt, nsub, kernel)
         _advance(j, dt, state, body, rad, strips, rotor, wave, moor, rec)
 
@@ -496,7 +518,8 @@ def _run_quasistatic(n, dt, state, body, rad, strips, rotor, wave, rec, lines, a
     """
     moor = MooringLink(True, lines.forces, lines.tension)
     for j in range(n):
-        _predict_fairleads(state.displacement, state.velocity, body.fairleads, dt, state.fairlead_position,
-                           state.fairlead_velocity)
+        _predict_fairleads(
+            state.displacement, state.velocity, body.fairleads, dt, state.fairlead_position, state.fairlead_velocity
+        )
         _step_quasistatic_lines(lines, state.fairlead_position, anchors, table)
         _advance(j, dt, state, body, rad, strips, rotor, wave, moor, rec)

@@ -41,8 +41,15 @@ def without_radiation_memory(model: ModelInputs) -> ModelInputs:
     decay test against them like for like; the simulation itself always keeps the memory. The
     linear and viscous damping, the mooring and everything else are unchanged.
     """
-    return replace(model, rad_a=np.zeros((0, 0)), rad_b=np.zeros((0, 6)), rad_c=np.zeros((6, 0)),
-                   kernel=np.zeros((0, 0)), kernel_pairs=np.zeros((0, 2), dtype=np.int64), kernel_dt=0.0)
+    return replace(
+        model,
+        rad_a=np.zeros((0, 0)),
+        rad_b=np.zeros((0, 6)),
+        rad_c=np.zeros((6, 0)),
+        kernel=np.zeros((0, 0)),
+        kernel_pairs=np.zeros((0, 2), dtype=np.int64),
+        kernel_dt=0.0,
+    )
 
 
 def radiation_impedance(model: ModelInputs, omega: np.ndarray) -> np.ndarray:
@@ -109,7 +116,7 @@ def frequency_response(
         z = np.asarray(radiation_damping) - 1j * w[:, None, None] * np.asarray(added_mass)
     out = np.empty((w.size, 6), dtype=complex)
     for i, wi in enumerate(w):
-        h = -wi**2 * model.mass + model.stiffness + km - 1j * wi * (model.damping + z[i])
+        h = -(wi**2) * model.mass + model.stiffness + km - 1j * wi * (model.damping + z[i])
         out[i] = np.linalg.solve(h, x[i])
     return out
 

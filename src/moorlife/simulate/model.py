@@ -137,8 +137,10 @@ def build_model(**kwargs: Any) -> ModelInputs:
     kw.setdefault("rho", 1025.0)
     kw.setdefault("gravity", env.G)
     scalars = ("mooring_kind", "mooring_args", "line_info", "depth", "rho", "gravity", "kernel_dt", "kernel_pairs")
-    arrays = {k: (np.asarray(v, dtype=complex if k == "excitation" else float) if k not in scalars else v)
-              for k, v in kw.items()}
+    arrays = {
+        k: (np.asarray(v, dtype=complex if k == "excitation" else float) if k not in scalars else v)
+        for k, v in kw.items()
+    }
     if "kernel_pairs" in arrays:
         arrays["kernel_pairs"] = np.asarray(arrays["kernel_pairs"], dtype=np.int64).reshape(-1, 2)
     m = ModelInputs(**arrays)
@@ -147,7 +149,9 @@ def build_model(**kwargs: Any) -> ModelInputs:
             raise ValueError(f"ModelInputs.{key}: expected shape {shape}, got {getattr(m, key).shape}")
     nr = m.rad_a.shape[0]
     if m.rad_b.shape != (nr, 6) or m.rad_c.shape != (6, nr):
-        raise ValueError(f"radiation state space: inconsistent shapes {m.rad_a.shape}, {m.rad_b.shape}, {m.rad_c.shape}")
+        raise ValueError(
+            f"radiation state space: inconsistent shapes {m.rad_a.shape}, {m.rad_b.shape}, {m.rad_c.shape}"
+        )
     nw, nh = m.omega.size, m.headings.size
     if m.excitation.shape != (nw, nh, 6) or m.drift.shape != (nw, nh, 6):
         raise ValueError(f"excitation/drift: expected ({nw}, {nh}, 6), got {m.excitation.shape}, {m.drift.shape}")

@@ -56,8 +56,12 @@ def _strips_from_members(members: list[Mapping[str, Any]], strip_length: float, 
             axis.append(t)
             cdn.append(0.0)
             cda.append(0.5 * rho * float(mem["axial_cd"]) * math.pi * d**2 / 4.0)
-    return (np.asarray(pos, dtype=float).reshape(-1, 3), np.asarray(axis, dtype=float).reshape(-1, 3),
-            np.asarray(cdn, dtype=float), np.asarray(cda, dtype=float))
+    return (
+        np.asarray(pos, dtype=float).reshape(-1, 3),
+        np.asarray(axis, dtype=float).reshape(-1, 3),
+        np.asarray(cdn, dtype=float),
+        np.asarray(cda, dtype=float),
+    )
 
 
 def _rest_mooring_load(proto: Any, fairleads: np.ndarray) -> np.ndarray:
@@ -125,9 +129,17 @@ def platform_from(pm: Any, platform_cfg: Mapping[str, Any], sim_cfg: Mapping[str
     strip_len = max(sim.drag_strip_length, float(platform_cfg.get("morison_strip_length", 1.0)))
     strips = _strips_from_members(members, strip_len, rho)
     v = np.arange(-40.0, 80.0 + 1e-9, 0.02)
-    thrust = turbine.thrust(v, pm.ct_wind_speed, pm.ct, rho_air=pm.rho_air, rotor_area=pm.rotor_area,
-                            cut_in=pm.cut_in, cut_out=pm.cut_out, shutdown_ramp=pm.shutdown_ramp,
-                            startup_ramp=pm.startup_ramp)
+    thrust = turbine.thrust(
+        v,
+        pm.ct_wind_speed,
+        pm.ct,
+        rho_air=pm.rho_air,
+        rotor_area=pm.rotor_area,
+        cut_in=pm.cut_in,
+        cut_out=pm.cut_out,
+        shutdown_ramp=pm.shutdown_ramp,
+        startup_ramp=pm.startup_ramp,
+    )
     filt = turbine.notch_filter(pm.pitch_filter_centre, pm.pitch_filter_quality)
     damp = np.diag(np.asarray(sim.extra_damping, dtype=float))
     depth = float(pm.water_depth)
@@ -139,8 +151,11 @@ def platform_from(pm: Any, platform_cfg: Mapping[str, Any], sim_cfg: Mapping[str
         nk = int(np.searchsorted(np.asarray(pm.kernel_t), memory + 1e-9))
         kern6 = np.asarray(pm.kernel, float)[:nk]
         pairs = _kernel_pairs(kern6)
-        rad = dict(kernel=np.stack([kern6[:, i, j] for i, j in pairs], axis=1), kernel_pairs=pairs,
-                   kernel_dt=float(pm.kernel_dt))
+        rad = dict(
+            kernel=np.stack([kern6[:, i, j] for i, j in pairs], axis=1),
+            kernel_pairs=pairs,
+            kernel_dt=float(pm.kernel_dt),
+        )
     elif radiation == "statespace":
         rad = dict(rad_a=pm.ss_A, rad_b=pm.ss_B, rad_c=pm.ss_C)
     else:
@@ -150,13 +165,24 @@ def platform_from(pm: Any, platform_cfg: Mapping[str, Any], sim_cfg: Mapping[str
         stiffness=np.asarray(pm.stiffness, float),
         damping=damp,
         **rad,
-        omega=pm.omega, headings=pm.headings,
-        excitation=np.conj(np.asarray(pm.excitation)), drift=pm.drift,
-        strip_pos=strips[0], strip_axis=strips[1], strip_cdn=strips[2], strip_cda=strips[3],
-        hub=np.asarray(pm.hub_point, float), thrust_speed=v, thrust_force=thrust,
-        filt_a=filt.A, filt_b=np.asarray(filt.B, float).reshape(-1, 1), filt_c=np.asarray(filt.C, float).reshape(1, -1),
+        omega=pm.omega,
+        headings=pm.headings,
+        excitation=np.conj(np.asarray(pm.excitation)),
+        drift=pm.drift,
+        strip_pos=strips[0],
+        strip_axis=strips[1],
+        strip_cdn=strips[2],
+        strip_cda=strips[3],
+        hub=np.asarray(pm.hub_point, float),
+        thrust_speed=v,
+        thrust_force=thrust,
+        filt_a=filt.A,
+        filt_b=np.asarray(filt.B, float).reshape(-1, 1),
+        filt_c=np.asarray(filt.C, float).reshape(1, -1),
         filt_d=np.array([[float(filt.D)]]),
-        depth=depth, rho=rho, gravity=float(pm.g),
+        depth=depth,
+        rho=rho,
+        gravity=float(pm.g),
         mooring_stiffness=np.asarray(pm.mooring_stiffness, float),
     )
     a_inf = effective_added_mass_inf(model, np.asarray(pm.omega, float), np.asarray(pm.added_mass, float))
@@ -196,7 +222,9 @@ def effective_added_mass_inf(
     return (np.asarray(added_mass, dtype=float)[sel] - a_mem).mean(axis=0)
 
 
-def attach_mooring(model: ModelInputs, mooring_row: Mapping[str, Any], mooring_cfg: Mapping[str, Any] | None) -> ModelInputs:
+def attach_mooring(
+    model: ModelInputs, mooring_row: Mapping[str, Any], mooring_cfg: Mapping[str, Any] | None
+) -> ModelInputs:
     """Give a platform model its mooring system (lines, layout, model kind, trim load).
 
     Parameters
@@ -220,7 +248,9 @@ def attach_mooring(model: ModelInputs, mooring_row: Mapping[str, Any], mooring_c
     props = moor.line_properties(mooring_row, water_density=model.rho, gravity=model.gravity)
     layout = moor.oc4_layout(mooring_cfg)
     if abs(layout.depth - model.depth) > 1e-6:
-        raise ValueError(f"mooring.water_depth = {layout.depth} m differs from the platform's water depth {model.depth} m")
+        raise ValueError(
+            f"mooring.water_depth = {layout.depth} m differs from the platform's water depth {model.depth} m"
+        )
     kind = moor.mooring_settings(mooring_cfg).model
     proto = moor.make_mooring(kind, props, layout, mooring_cfg, batch=1)
     fair = np.ascontiguousarray(layout.fairleads_body, dtype=float)
@@ -228,13 +258,18 @@ def attach_mooring(model: ModelInputs, mooring_row: Mapping[str, Any], mooring_c
     static = np.zeros(6)
     static[[2, 3, 4]] = -rest[[2, 3, 4]]
     return replace(
-        model, mooring_kind=kind, mooring_args=(props, layout, mooring_cfg, proto), fairleads=fair,
+        model,
+        mooring_kind=kind,
+        mooring_args=(props, layout, mooring_cfg, proto),
+        fairleads=fair,
         static_load=static,
         line_info={"link_diameter": props.link_diameter, "mbs": props.MBS, "chain": props.chain},
     )
 
 
-def static_equilibrium(model: ModelInputs, load: np.ndarray, *, tol: float = 1e-6, max_iter: int = 50) -> tuple[np.ndarray, np.ndarray]:
+def static_equilibrium(
+    model: ModelInputs, load: np.ndarray, *, tol: float = 1e-6, max_iter: int = 50
+) -> tuple[np.ndarray, np.ndarray]:
     """Static position of the moored platform under a constant external load.
 
     Solves ``load + static_load + F_moor(q) - K q = 0`` by Newton iterations with a

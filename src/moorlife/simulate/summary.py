@@ -89,14 +89,25 @@ def summarise(
 
             settings = fatigue.fatigue_settings(fatigue_cfg, source="config.yaml")
             d_sn, d_tn = fatigue.hourly_damage(
-                ten, nt * dt, link_diameter=line_info["link_diameter"], mbs=line_info["mbs"],
-                chain=line_info["chain"], **settings.damage_kwargs(),
+                ten,
+                nt * dt,
+                link_diameter=line_info["link_diameter"],
+                mbs=line_info["mbs"],
+                chain=line_info["chain"],
+                **settings.damage_kwargs(),
             )
             out["damage_sn"], out["damage_tn"] = np.asarray(d_sn), np.asarray(d_tn)
     else:
         nan3 = np.full(ten.shape[:2], np.nan)
-        for name in ("tension_mpm", "gev_corr_tension_mpm", "tension_mean", "tension_std", "tension_max",
-                     "damage_sn", "damage_tn"):
+        for name in (
+            "tension_mpm",
+            "gev_corr_tension_mpm",
+            "tension_mean",
+            "tension_std",
+            "tension_max",
+            "damage_sn",
+            "damage_tn",
+        ):
             out[name] = nan3.copy()
     out["surge_mean"] = mo[:, 0].mean(axis=-1)
     out["sway_mean"] = mo[:, 1].mean(axis=-1)

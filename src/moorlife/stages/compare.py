@@ -12,7 +12,6 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from moorlife.settings import fill_section
 from moorlife import fatigue as fatigue_mod
 from moorlife import lifecycle as lc_mod
 from moorlife import names
@@ -25,6 +24,7 @@ from moorlife.io import (
     write_csv,
     write_yaml,
 )
+from moorlife.settings import fill_section
 from moorlife.stages import logged
 
 __all__ = ["run", "figures"]
@@ -88,8 +88,9 @@ def run(
         lcs, dds = {}, {}
         for ms, lp, dp in zip(systems, lifecycles, discretes, strict=True):
             lc = open_zarr(lp, load=False)
-            lcs[ms] = lc.drop_vars([v for v in lc.data_vars if names.TIME in lc[v].dims
-                                    and v not in ("surge_mpm", "tension_mpm")]).load()
+            lcs[ms] = lc.drop_vars(
+                [v for v in lc.data_vars if names.TIME in lc[v].dims and v not in ("surge_mpm", "tension_mpm")]
+            ).load()
             dds[ms] = lc_mod.discrete_damage_table(states, open_zarr(dp), lc.attrs["n_hours"])
         cv = _seed_cv(seeds)
         rec_cfg = fill_section("lifecycle.recommendation", lifecycle.get("recommendation"))
@@ -102,13 +103,17 @@ def run(
         info = {
             "recommended": rec,
             "curves": curves,
-            "rule": (f"lightest system with DFF x design-life damage <= 1 on every line for curves {curves}"
-                     + (" (corroding chain)" if corr is not None else "")),
+            "rule": (
+                f"lightest system with DFF x design-life damage <= 1 on every line for curves {curves}"
+                + (" (corroding chain)" if corr is not None else "")
+            ),
             "seed_cv": cv,
-            "max_utilisation": {ms: float(g["utilisation"].max())
-                                for ms, g in table[table.curve.isin(curves)].groupby("mooring_system")},
-            "mean_difference_pct": {f"{c}/{ln}": float(g["difference_pct"].mean())
-                                    for (c, ln), g in table.groupby(["curve", "line"])},
+            "max_utilisation": {
+                ms: float(g["utilisation"].max()) for ms, g in table[table.curve.isin(curves)].groupby("mooring_system")
+            },
+            "mean_difference_pct": {
+                f"{c}/{ln}": float(g["difference_pct"].mean()) for (c, ln), g in table.groupby(["curve", "line"])
+            },
         }
         write_yaml(info, recommendation)
         _log.info("recommendation: %s", info)

@@ -72,8 +72,8 @@ def map_cases(
     xarray.Dataset
         The complete store, loaded: the outputs plus the case variables.
     """
-    store = PartialStore(output, cases, dim=dim, fingerprint=fingerprint, batch_size=batch_size,
-                         attrs_of=attrs_of, log=log)
-    parallel.map_batches(func, cases, store, dim=dim, func_kwargs=func_kwargs, threads=threads, log=log,
-                         client=client)
+    store = PartialStore(
+        output, cases, dim=dim, fingerprint=fingerprint, batch_size=batch_size, attrs_of=attrs_of, log=log
+    )
+    parallel.map_batches(func, cases, store, dim=dim, func_kwargs=func_kwargs, threads=threads, log=log, client=client)
     return store.finalise(attrs)

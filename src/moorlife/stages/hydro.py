@@ -43,8 +43,9 @@ def run(
     env = bem["environment"]
     with logged(log, __name__):
         if bem["source"] == "wamit":
-            ds = read_wamit_dataset(bem["wamit_prefix"], rho=env["rho_water"], g=env["gravity"],
-                                    water_depth=env["water_depth"])
+            ds = read_wamit_dataset(
+                bem["wamit_prefix"], rho=env["rho_water"], g=env["gravity"], water_depth=env["water_depth"]
+            )
         else:
             ds = hydro.bem_from_settings(bem, n_jobs=threads)
         write_platform_nc(ds, store)

@@ -10,10 +10,10 @@ from typing import Any
 
 import xarray as xr
 
-from moorlife.settings import fill_section
 from moorlife import lifecycle as lc_mod
 from moorlife import names
 from moorlife.io import open_zarr, save_figure, write_zarr
+from moorlife.settings import fill_section
 from moorlife.stages import logged
 
 __all__ = ["run", "figures"]
@@ -62,17 +62,26 @@ def run(
             rbf_cfg["chunk_rows"] = int(chunk_rows)
         settings = lc_mod.rbf_settings(rbf_cfg, source="config.yaml")
         ds = lc_mod.reconstruct_lifecycle(
-            open_zarr(hindcast), open_zarr(cases), open_zarr(simulations), settings=settings, fatigue_cfg=fatigue,
+            open_zarr(hindcast),
+            open_zarr(cases),
+            open_zarr(simulations),
+            settings=settings,
+            fatigue_cfg=fatigue,
             n_suggest=int(fill_section("lifecycle.adaptive", lifecycle.get("adaptive"))["n_suggest"]),
         )
         for k in ("validation_r", "validation_rmse"):
             if k in ds:
-                logger.info("%s: %s", k, {str(o): round(float(v), 4) for o, v in zip(ds["output"].values, ds[k].values)})
+                logger.info(
+                    "%s: %s", k, {str(o): round(float(v), 4) for o, v in zip(ds["output"].values, ds[k].values)}
+                )
         if "lifecycle_damage" in ds:
             logger.info("life-cycle damage (curve x line):\n%s", ds["lifecycle_damage"].to_pandas())
         chunks = {names.TIME: min(ds.sizes[names.TIME], 65536)}
-        enc = {v: {"chunks": tuple(chunks.get(d, ds.sizes[d]) for d in ds[v].dims)}
-               for v in ds.data_vars if names.TIME in ds[v].dims}
+        enc = {
+            v: {"chunks": tuple(chunks.get(d, ds.sizes[d]) for d in ds[v].dims)}
+            for v in ds.data_vars
+            if names.TIME in ds[v].dims
+        }
         write_zarr(ds, store, encoding=enc)
         return ds
 

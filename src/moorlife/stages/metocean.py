@@ -8,7 +8,6 @@ import os
 from collections.abc import Mapping
 from typing import Any
 
-import numpy as np
 import xarray as xr
 
 from moorlife import metocean
@@ -52,11 +51,21 @@ def build_hindcast(cfg: Mapping[str, Any], seed: int, base_dir: str = ".") -> xr
         out = metocean.generate_synthetic(time, params, seed, hub, alpha)
         log.info(
             "synthetic hindcast, seed %d: %d hours %s..%s, mean Hs %.2f m, max Hs %.2f m, mean wind %.2f m/s at %g m",
-            seed, time.size, cfg["start"], cfg["end"], out["hs"].mean(), out["hs"].max(), out["wind_speed"].mean(), hub,
+            seed,
+            time.size,
+            cfg["start"],
+            cfg["end"],
+            out["hs"].mean(),
+            out["hs"].max(),
+            out["wind_speed"].mean(),
+            hub,
         )
         return metocean.hindcast_dataset(
-            time, out, source=f"moorlife synthetic BiMEP-like hindcast (seed {seed})",
-            extra_attrs={"wind_reference_height": params.reference_height, "shear_exponent": alpha}, **common,
+            time,
+            out,
+            source=f"moorlife synthetic BiMEP-like hindcast (seed {seed})",
+            extra_attrs={"wind_reference_height": params.reference_height, "shear_exponent": alpha},
+            **common,
         )
     if cfg["source"] != "file":
         raise metocean.HindcastError(f"hindcast.source = {cfg.get('source')!r}: expected 'synthetic' or 'file'")

@@ -47,8 +47,9 @@ def run(
     """
     with logged(log, __name__):
         hc = open_zarr(hindcast)
-        cases = selection.select_cases(hc, n_train=n_train, n_validate=n_validate, rule=rule, seed=seed,
-                                       source=str(hindcast))
+        cases = selection.select_cases(
+            hc, n_train=n_train, n_validate=n_validate, rule=rule, seed=seed, source=str(hindcast)
+        )
         write_zarr(cases, store)
         return cases
 
@@ -80,8 +81,9 @@ def discrete(
     """
     with logged(log, __name__):
         hc = open_zarr(hindcast)
-        ds = selection.discrete_states(hc, hs_edges=hs_edges, wind_edges=wind_edges, tp_edges=tp_edges,
-                                       sector=sector, source=str(hindcast))
+        ds = selection.discrete_states(
+            hc, hs_edges=hs_edges, wind_edges=wind_edges, tp_edges=tp_edges, sector=sector, source=str(hindcast)
+        )
         write_zarr(ds, store)
         return ds
 

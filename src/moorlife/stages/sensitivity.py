@@ -114,12 +114,24 @@ def run(
         fs = fatigue_mod.fatigue_settings(fatigue)
         mooring = read_mooring_systems(mooring_systems)
         sd = open_zarr(seeds)
-        lives = {c: lc_mod.seed_lives(sd[v].transpose("case", names.LINE).values)
-                 for c, v in lc_mod.DAMAGE_VARS.items() if v in sd}
+        lives = {
+            c: lc_mod.seed_lives(sd[v].transpose("case", names.LINE).values)
+            for c, v in lc_mod.DAMAGE_VARS.items()
+            if v in sd
+        }
         lines = [str(v) for v in sd[names.LINE].values]
-        rows = [{"seed": int(k), "curve": c, "line": ln,
-                 "hourly_damage": float(sd[lc_mod.DAMAGE_VARS[c]].values[i, j]), "life_years": float(lv[i, j])}
-                for c, lv in lives.items() for i, k in enumerate(sd["case"].values) for j, ln in enumerate(lines)]
+        rows = [
+            {
+                "seed": int(k),
+                "curve": c,
+                "line": ln,
+                "hourly_damage": float(sd[lc_mod.DAMAGE_VARS[c]].values[i, j]),
+                "life_years": float(lv[i, j]),
+            }
+            for c, lv in lives.items()
+            for i, k in enumerate(sd["case"].values)
+            for j, ln in enumerate(lines)
+        ]
         seeds_df = pd.DataFrame(rows)
         write_csv(seeds_df, seeds_csv)
         save_figure(plots.seed_spread(seeds_df, title=f"{ms}, one sea state, {sd.sizes['case']} seeds"), seeds_fig)
@@ -130,16 +142,24 @@ def run(
         ev = []
         for curve in [str(c) for c in lc[names.CURVE].values]:
             py = float(lc["damage_per_year"].sel({names.CURVE: curve, names.LINE: line}))
-            mt = float(lc["tension_mean"].sel({names.LINE: line}).mean()) if "tension_mean" in lc else float(
-                mooring.loc[ms, "pretension_kN"]) * 1e3
+            mt = (
+                float(lc["tension_mean"].sel({names.LINE: line}).mean())
+                if "tension_mean" in lc
+                else float(mooring.loc[ms, "pretension_kN"]) * 1e3
+            )
             e = lc_mod.corrosion_evolution(py, d0, years, curve=curve, settings=fs, mean_tension=mt)
-            ev += [{"curve": curve, "years": y, "corroded": c, "intact": i}
-                   for y, c, i in zip(e["years"], e["corroded"], e["intact"])]
+            ev += [
+                {"curve": curve, "years": y, "corroded": c, "intact": i}
+                for y, c, i in zip(e["years"], e["corroded"], e["intact"])
+            ]
         ev_df = pd.DataFrame(ev)
         write_csv(ev_df, corrosion_csv)
-        save_figure(plots.corrosion_evolution(ev_df, title=f"{ms} {line}, "
-                                              f"{fs.corrosion_rate * 1e3:g} mm/year, step {fs.corrosion_step:g} years"),
-                    corrosion_fig)
+        save_figure(
+            plots.corrosion_evolution(
+                ev_df, title=f"{ms} {line}, {fs.corrosion_rate * 1e3:g} mm/year, step {fs.corrosion_step:g} years"
+            ),
+            corrosion_fig,
+        )
 
         mean_t = {}
         for other, lp in zip(systems, lifecycles, strict=True):

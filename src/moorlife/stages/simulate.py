@@ -14,12 +14,12 @@ from typing import Any
 import xarray as xr
 
 import moorlife
-from moorlife.settings import SimulationSettings
 from moorlife import simulate
 from moorlife.config import fingerprint
 from moorlife.io import open_zarr
 from moorlife.io.platform import open_platform_nc, read_platform_config
 from moorlife.parallel import dataset_digest
+from moorlife.settings import SimulationSettings
 from moorlife.stages import logged, scheduling_free
 from moorlife.stages.fanout import map_cases
 
@@ -50,8 +50,18 @@ def store_fingerprint(
     ``stream`` another random stream than the dimension (the truth target).
     """
     return fingerprint(
-        "simulate-v2", dim if stream in (None, dim) else f"{dim}/{stream}", moorlife.__version__, ms, dict(row), int(seed), scheduling_free("simulation", simulation),
-        dict(mooring or {}), dict(fatigue or {}), dict(statistics or {}), platform_cfg, dataset_digest(cases),
+        "simulate-v2",
+        dim if stream in (None, dim) else f"{dim}/{stream}",
+        moorlife.__version__,
+        ms,
+        dict(row),
+        int(seed),
+        scheduling_free("simulation", simulation),
+        dict(mooring or {}),
+        dict(fatigue or {}),
+        dict(statistics or {}),
+        platform_cfg,
+        dataset_digest(cases),
         dataset_digest(platform),
     )
 
@@ -127,14 +137,48 @@ def run(
         full_row = {**dict(row), "mooring_system": ms}
         model = simulate.prepare_model(platform_ds, pcfg, full_row, mooring, sim_cfg)
         logger.info("%s: %s mooring, %d sea states along %r", ms, model.mooring_kind, cs.sizes[dim], dim)
-        fp = store_fingerprint(dim=dim, ms=ms, row=full_row, seed=seed, simulation=sim_cfg, mooring=mooring,
-                               fatigue=fatigue, statistics=statistics, platform_cfg=pcfg, cases=cs,
-                               platform=platform_ds, stream=stream)
-        kwargs = dict(mooring_system=ms, seed=int(seed), stream=dim if stream is None else str(stream), model_inputs=model, sim_cfg=sim_cfg,
-                      fatigue_cfg=dict(fatigue or {}), stats_cfg=dict(statistics or {}))
-        attrs = {"mooring_system": ms, "mooring_model": model.mooring_kind, "seed": int(seed),
-                 "duration": settings.duration, "dt": settings.dt}
+        fp = store_fingerprint(
+            dim=dim,
+            ms=ms,
+            row=full_row,
+            seed=seed,
+            simulation=sim_cfg,
+            mooring=mooring,
+            fatigue=fatigue,
+            statistics=statistics,
+            platform_cfg=pcfg,
+            cases=cs,
+            platform=platform_ds,
+            stream=stream,
+        )
+        kwargs = dict(
+            mooring_system=ms,
+            seed=int(seed),
+            stream=dim if stream is None else str(stream),
+            model_inputs=model,
+            sim_cfg=sim_cfg,
+            fatigue_cfg=dict(fatigue or {}),
+            stats_cfg=dict(statistics or {}),
+        )
+        attrs = {
+            "mooring_system": ms,
+            "mooring_model": model.mooring_kind,
+            "seed": int(seed),
+            "duration": settings.duration,
+            "dt": settings.dt,
+        }
         if stream not in (None, dim):  # the default stores keep their attributes unchanged
             attrs["random_stream"] = str(stream)
-        return map_cases(simulate.simulate_batch, cs, store, dim=dim, func_kwargs=kwargs, batch_size=bs,
-                         fingerprint=fp, threads=threads, log=logger, attrs=attrs, attrs_of=simulate.output_attrs)
+        return map_cases(
+            simulate.simulate_batch,
+            cs,
+            store,
+            dim=dim,
+            func_kwargs=kwargs,
+            batch_size=bs,
+            fingerprint=fp,
+            threads=threads,
+            log=logger,
+            attrs=attrs,
+            attrs_of=simulate.output_attrs,
+        )

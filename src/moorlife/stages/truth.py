@@ -44,15 +44,27 @@ def hours_store(hindcast: PathLike, output: PathLike, *, start: str, end: str, s
     """
     hc = open_zarr(hindcast)
     times = hc[names.TIME].values
-    idx = kernels.window_indices(times, np.datetime64(pd.Timestamp(start)), np.datetime64(pd.Timestamp(end)),
-                                 int(stride), source=str(hindcast))
-    data: dict[str, Any] = {v: (names.CASE, np.asarray(hc[v].values[idx], dtype=float), names.attrs_for(v))
-                            for v in names.METOCEAN_VARS}
-    data["hindcast_index"] = (names.CASE, idx, {"units": "1", "long_name": "position of the hour along the hindcast 'time'"})
+    idx = kernels.window_indices(
+        times, np.datetime64(pd.Timestamp(start)), np.datetime64(pd.Timestamp(end)), int(stride), source=str(hindcast)
+    )
+    data: dict[str, Any] = {
+        v: (names.CASE, np.asarray(hc[v].values[idx], dtype=float), names.attrs_for(v)) for v in names.METOCEAN_VARS
+    }
+    data["hindcast_index"] = (
+        names.CASE,
+        idx,
+        {"units": "1", "long_name": "position of the hour along the hindcast 'time'"},
+    )
     data["role"] = (names.CASE, np.array(["truth"] * idx.size), {"long_name": "truth: an hour of the truth window"})
     ds = xr.Dataset(data, coords={names.CASE: idx, names.TIME: (names.CASE, times[idx])})
-    ds.attrs.update({"window_start": str(start), "window_end": str(end), "stride": int(stride),
-                     "description": "every stride-th hindcast hour of the truth window (case id = hindcast index)"})
+    ds.attrs.update(
+        {
+            "window_start": str(start),
+            "window_end": str(end),
+            "stride": int(stride),
+            "description": "every stride-th hindcast hour of the truth window (case id = hindcast index)",
+        }
+    )
     log.info("truth window %s .. %s, stride %d: %d hours", start, end, int(stride), idx.size)
     write_zarr(ds, output)
     return ds
@@ -87,8 +99,15 @@ def comparison_table(cmp: xr.Dataset) -> pd.DataFrame:
             for ln in cmp[names.LINE].values:
                 sel = {names.CURVE: cv, names.LINE: ln}
                 row = {"kind": "damage", "output": f"damage_{cv}/{ln}", "curve": str(cv), "line": str(ln)}
-                for k in ("truth_damage", "reconstruction_damage", "bins_damage", "reconstruction_error_pct",
-                          "bins_error_pct", "seed_sum_std_pct", "seed_sum_difference_pct"):
+                for k in (
+                    "truth_damage",
+                    "reconstruction_damage",
+                    "bins_damage",
+                    "reconstruction_error_pct",
+                    "bins_error_pct",
+                    "seed_sum_std_pct",
+                    "seed_sum_difference_pct",
+                ):
                     if k in cmp:
                         row[k] = float(cmp[k].sel(sel))
                 rows.append(row)
@@ -116,8 +135,14 @@ def run(
     lc = open_zarr(lifecycle, load=False)
     keep = [v for v in lc.data_vars if names.TIME in lc[v].dims and (v in compared or v in names.METOCEAN_VARS)]
     lc = lc[keep].load()
-    cmp = kernels.compare_window(open_zarr(truth), lc, open_zarr(discrete_states), open_zarr(discrete_sims),
-                                 outputs=list(compared), seed2=open_zarr(truth_seed2) if truth_seed2 else None)
+    cmp = kernels.compare_window(
+        open_zarr(truth),
+        lc,
+        open_zarr(discrete_states),
+        open_zarr(discrete_sims),
+        outputs=list(compared),
+        seed2=open_zarr(truth_seed2) if truth_seed2 else None,
+    )
     table = comparison_table(cmp)
     log.info("truth comparison of %s on %d hours:\n%s", mooring_system, cmp.attrs["n_hours"], table.to_string())
     write_zarr(cmp, outputs["store"])
@@ -125,6 +150,8 @@ def run(
     p.parent.mkdir(parents=True, exist_ok=True)
     table.to_csv(p, index=False, float_format="%.6g")
     save_figure(plots.truth_scatter(cmp, title=mooring_system), outputs["scatter"])
-    save_figure(plots.cumulative_damage(cmp, title=f"{mooring_system}, {cmp.attrs['n_hours']} truth hours"),
-                outputs["cumulative"])
+    save_figure(
+        plots.cumulative_damage(cmp, title=f"{mooring_system}, {cmp.attrs['n_hours']} truth hours"),
+        outputs["cumulative"],
+    )
     return cmp

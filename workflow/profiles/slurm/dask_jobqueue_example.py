@@ -37,30 +37,40 @@ from pathlib import Path
 def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--jobs", type=int, default=8, help="SLURM jobs (each one worker node)")
-    ap.add_argument("--cores", type=int, default=32,
-                    help="cores per job = single-threaded worker processes per job")
+    ap.add_argument("--cores", type=int, default=32, help="cores per job = single-threaded worker processes per job")
     ap.add_argument("--memory", default="96GB", help="memory per job")
     ap.add_argument("--walltime", default="04:00:00")
-    ap.add_argument("--queue", default=None,
-                    help="SLURM partition (default: the cluster's default partition)")
+    ap.add_argument("--queue", default=None, help="SLURM partition (default: the cluster's default partition)")
     ap.add_argument("--account", default=None, help="SLURM account (default: none given)")
-    ap.add_argument("--interface", default=None,
-                    help="network interface of the scheduler and workers, e.g. ib0 or eth0 "
-                         "(default: the address the hostname resolves to)")
-    ap.add_argument("--venv", default=None,
-                    help="virtualenv activated in each job (default: run this interpreter, "
-                         f"{sys.executable})")
-    ap.add_argument("--min-workers", type=int, default=None,
-                    help="workers to wait for before publishing (default: jobs x cores)")
-    ap.add_argument("--timeout", type=float, default=600.0,
-                    help="seconds to wait for the workers; then close the cluster and exit 1")
+    ap.add_argument(
+        "--interface",
+        default=None,
+        help="network interface of the scheduler and workers, e.g. ib0 or eth0 "
+        "(default: the address the hostname resolves to)",
+    )
+    ap.add_argument(
+        "--venv",
+        default=None,
+        help=f"virtualenv activated in each job (default: run this interpreter, {sys.executable})",
+    )
+    ap.add_argument(
+        "--min-workers", type=int, default=None, help="workers to wait for before publishing (default: jobs x cores)"
+    )
+    ap.add_argument(
+        "--timeout",
+        type=float,
+        default=600.0,
+        help="seconds to wait for the workers; then close the cluster and exit 1",
+    )
     ap.add_argument("--address-file", type=Path, default=Path("dask-scheduler-address.txt"))
     ap.add_argument("--pid-file", type=Path, default=Path("dask-cluster.pid"))
-    ap.add_argument("--log-file", type=Path, default=Path("dask-cluster.log"),
-                    help="log of the detached cluster")
-    ap.add_argument("--detach", action="store_true",
-                    help="print the address once the workers are up and return; the cluster "
-                         "keeps running in the background until SIGTERM (kill $(cat PID-FILE))")
+    ap.add_argument("--log-file", type=Path, default=Path("dask-cluster.log"), help="log of the detached cluster")
+    ap.add_argument(
+        "--detach",
+        action="store_true",
+        help="print the address once the workers are up and return; the cluster "
+        "keeps running in the background until SIGTERM (kill $(cat PID-FILE))",
+    )
     return ap.parse_args(argv)
 
 
@@ -125,8 +135,11 @@ def serve(args: argparse.Namespace, ready_fd: int | None = None) -> int:
         args.pid_file.write_text(f"{os.getpid()}\n")
         _publish(args.address_file, address + "\n")
         jobs = " ".join(str(getattr(j, "job_id", "?")) for j in cluster.workers.values())
-        print(f"scheduler at {address}; {n} workers up (SLURM jobs {jobs}); "
-              f"dashboard {client.dashboard_link}; SIGTERM or Ctrl-C to stop", flush=True)
+        print(
+            f"scheduler at {address}; {n} workers up (SLURM jobs {jobs}); "
+            f"dashboard {client.dashboard_link}; SIGTERM or Ctrl-C to stop",
+            flush=True,
+        )
         if ready_fd is not None:
             os.write(ready_fd, (address + "\n").encode())
             os.close(ready_fd)
@@ -172,8 +185,10 @@ def main(argv: list[str] | None = None) -> int:
     if not address:
         _, status = os.waitpid(pid, 0)
         sys.stderr.write(args.log_file.read_text() if args.log_file.exists() else "")
-        print(f"dask-jobqueue cluster failed (exit {os.waitstatus_to_exitcode(status)}); "
-              f"log: {args.log_file}", file=sys.stderr)
+        print(
+            f"dask-jobqueue cluster failed (exit {os.waitstatus_to_exitcode(status)}); log: {args.log_file}",
+            file=sys.stderr,
+        )
         return 1
     print(address)
     return 0
