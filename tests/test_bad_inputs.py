@@ -20,6 +20,7 @@ import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
+from snakemake.iocontainers import Namedlist
 from test_hindcast_io import NORA3_HEADER, nora3_frame, write_csv
 
 from moorlife import io as mio
@@ -52,10 +53,10 @@ def hindcast_params(path: Path) -> dict:
 def run_metocean(tmp_path: Path, csv: Path):
     out = tmp_path / "results" / "metocean" / "hindcast.zarr"
     smk = SimpleNamespace(
-        params=SimpleNamespace(hindcast=hindcast_params(csv), seed=1),
-        output=[str(out)],
+        params=Namedlist(fromdict={"hindcast": hindcast_params(csv), "seed": 1}),
+        output=Namedlist(fromdict={"store": str(out)}),
         log=[str(tmp_path / "logs" / "metocean.log")],
-        input=[],
+        input=Namedlist(),
     )
     return out, smk
 
@@ -144,10 +145,10 @@ def test_corrupted_upstream_store_not_trusted(tmp_path, damage):
         shutil.rmtree(store / "tp")
     out = tmp_path / "results" / "selection" / "cases.zarr"
     smk = SimpleNamespace(
-        input=[str(store)],
-        output=[str(out)],
+        input=Namedlist(fromdict={"hindcast": str(store)}),
+        output=Namedlist(fromdict={"store": str(out)}),
         log=[str(tmp_path / "sel.log")],
-        params=SimpleNamespace(n_train=10, n_validate=3, rule="random", seed=1),
+        params=Namedlist(fromdict={"n_train": 10, "n_validate": 3, "rule": "random", "seed": 1}),
     )
     with pytest.raises((mio.IncompleteStoreError, KeyError, ValueError)) as err:
         adapter("selection")(smk)

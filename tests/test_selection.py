@@ -426,18 +426,33 @@ def _run_script(name: str, smk) -> None:
 def test_workflow_scripts_write_contract_stores(tmp_path):
     from types import SimpleNamespace as NS
 
+    from snakemake.iocontainers import Namedlist
+
+    def nl(**kw):  # Snakemake's input/output/params containers (mappings by name)
+        return Namedlist(fromdict=kw)
+
     hc = make_hindcast(1500, seed=12)
     write_zarr(hc, tmp_path / "hindcast.zarr")
-    src = [str(tmp_path / "hindcast.zarr")]
-    params = NS(n_train=20, n_validate=5, rule="mda", seed=3)
+    src = nl(hindcast=str(tmp_path / "hindcast.zarr"))
+    params = nl(n_train=20, n_validate=5, rule="mda", seed=3)
     _run_script(
         "selection",
-        NS(input=src, output=[str(tmp_path / "cases.zarr")], params=params, log=[str(tmp_path / "selection.log")]),
+        NS(
+            input=src,
+            output=nl(store=str(tmp_path / "cases.zarr")),
+            params=params,
+            log=[str(tmp_path / "selection.log")],
+        ),
     )
-    params = NS(hs_edges=[0.0, 1.5, 3.0], wind_edges=[0.0, 7.0, 14.0], tp_edges=[0.0, 6.0, 9.0, 12.0], sector=15.0)
+    params = nl(hs_edges=[0.0, 1.5, 3.0], wind_edges=[0.0, 7.0, 14.0], tp_edges=[0.0, 6.0, 9.0, 12.0], sector=15.0)
     _run_script(
         "discrete",
-        NS(input=src, output=[str(tmp_path / "discrete.zarr")], params=params, log=[str(tmp_path / "discrete.log")]),
+        NS(
+            input=src,
+            output=nl(store=str(tmp_path / "discrete.zarr")),
+            params=params,
+            log=[str(tmp_path / "discrete.log")],
+        ),
     )
     cases, disc = open_zarr(tmp_path / "cases.zarr"), open_zarr(tmp_path / "discrete.zarr")
     assert cases.sizes[names.CASE] == 25 and cases.attrs["validation_rule"] == "mda"
@@ -451,9 +466,9 @@ def test_workflow_scripts_write_contract_stores(tmp_path):
         _run_script(
             "selection",
             NS(
-                input=[str(tmp_path / "bad.zarr")],
-                output=[str(tmp_path / "x.zarr")],
-                params=NS(n_train=5, n_validate=2, rule="random", seed=0),
+                input=nl(hindcast=str(tmp_path / "bad.zarr")),
+                output=nl(store=str(tmp_path / "x.zarr")),
+                params=nl(n_train=5, n_validate=2, rule="random", seed=0),
                 log=[str(tmp_path / "bad.log")],
             ),
         )
