@@ -17,6 +17,8 @@ import jsonschema
 
 __all__ = [
     "ConfigError",
+    "fill_defaults",
+    "raise_first_error",
     "validate_config",
     "check_cross_keys",
     "check_against_table",
@@ -35,7 +37,8 @@ class ConfigError(ValueError):
     """A configuration value is invalid; the message names the file, key and value."""
 
 
-def _key_path(error: jsonschema.ValidationError) -> str:
+def _key_parts(error: jsonschema.ValidationError) -> list[str]:
+    """The dotted path of the offending key, relative to the validated instance."""
     parts = [str(p) for p in error.absolute_path]
     if error.validator == "additionalProperties":
         # the offending key is in the message, not in the path
@@ -44,16 +47,35 @@ def _key_path(error: jsonschema.ValidationError) -> str:
     elif error.validator == "required":
         missing = [r for r in error.validator_value if r not in error.instance]
         parts.append(missing[0] if missing else "?")
-    return ".".join(parts) or "<root>"
+    return parts
 
 
-def _fill_defaults(instance: Any, schema: Mapping[str, Any]) -> Any:
+def raise_first_error(validator: jsonschema.Validator, instance: Any, source: str, prefix: str = "") -> None:
+    """Raise :class:`ConfigError` for the first (deepest) violation of ``instance``, if any.
+
+    The message names ``source``, the dotted key (``prefix`` before the key of a validated
+    section, e.g. ``"hindcast.synthetic"``), the value and the rule.
+    """
+    errors = sorted(validator.iter_errors(instance), key=lambda e: (-len(e.absolute_path), str(e.path)))
+    if not errors:
+        return
+    err = errors[0]
+    key = ".".join([prefix, *_key_parts(err)] if prefix else _key_parts(err)) or "<root>"
+    if err.validator == "additionalProperties":
+        raise ConfigError(f"{source}: unknown config key '{key}' (not in the schema; check its spelling)")
+    if err.validator == "required":
+        raise ConfigError(f"{source}: config key '{key}' is required")
+    raise ConfigError(f"{source}: config key '{key}' = {err.instance!r} is invalid: {err.message}")
+
+
+def fill_defaults(instance: Any, schema: Mapping[str, Any]) -> Any:
+    """Fill, in place and at every depth, the keys of ``instance`` missing from ``schema``'s defaults."""
     if schema.get("type") == "object" and isinstance(instance, dict):
         for name, sub in schema.get("properties", {}).items():
             if name not in instance and "default" in sub:
                 instance[name] = copy.deepcopy(sub["default"])
             if name in instance:
-                instance[name] = _fill_defaults(instance[name], sub)
+                instance[name] = fill_defaults(instance[name], sub)
     return instance
 
 
@@ -79,17 +101,8 @@ def validate_config(config: Mapping[str, Any], schema: Mapping[str, Any], source
     ConfigError
         On the first (deepest) violation, naming the dotted key, the value and the rule.
     """
-    filled = _fill_defaults(copy.deepcopy(dict(config)), schema)
-    validator = jsonschema.Draft202012Validator(schema)
-    errors = sorted(validator.iter_errors(filled), key=lambda e: (-len(e.absolute_path), str(e.path)))
-    if errors:
-        err = errors[0]
-        key = _key_path(err)
-        if err.validator == "additionalProperties":
-            raise ConfigError(f"{source}: unknown config key '{key}' (not in the schema; check its spelling)")
-        if err.validator == "required":
-            raise ConfigError(f"{source}: config key '{key}' is required")
-        raise ConfigError(f"{source}: config key '{key}' = {err.instance!r} is invalid: {err.message}")
+    filled = fill_defaults(copy.deepcopy(dict(config)), schema)
+    raise_first_error(jsonschema.Draft202012Validator(schema), filled, source)
     check_cross_keys(filled, source)
     return filled
 

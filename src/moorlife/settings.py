@@ -26,7 +26,7 @@ import jsonschema
 import numpy as np
 import yaml
 
-from moorlife.config import ConfigError, iter_schema_leaves
+from moorlife.config import fill_defaults, iter_schema_leaves, raise_first_error
 
 __all__ = [
     "SCHEMA_RESOURCE",
@@ -77,16 +77,6 @@ def section_schema(path: str) -> Mapping[str, Any]:
     return sub
 
 
-def _fill(instance: Any, schema: Mapping[str, Any]) -> Any:
-    if schema.get("type") == "object" and isinstance(instance, dict):
-        for name, sub in schema.get("properties", {}).items():
-            if name not in instance and "default" in sub:
-                instance[name] = copy.deepcopy(sub["default"])
-            if name in instance:
-                instance[name] = _fill(instance[name], sub)
-    return instance
-
-
 def section_defaults(path: str) -> dict[str, Any]:
     """The schema defaults of a config section, filled to every depth (a fresh copy).
 
@@ -94,7 +84,7 @@ def section_defaults(path: str) -> dict[str, Any]:
     is the whole default configuration.
     """
     sub = section_schema(path)
-    return _fill(copy.deepcopy(sub.get("default", {})) if path else {}, sub)
+    return fill_defaults(copy.deepcopy(sub.get("default", {})) if path else {}, sub)
 
 
 def _plain(value: Any) -> Any:
@@ -132,33 +122,14 @@ def fill_section(path: str, section: Mapping[str, Any] | None, source: str = "co
         (e.g. ``hindcast.synthetic.swell.tp_bse``).
     """
     prefix = ".".join(_parts(path))
-    filled = _fill(_plain(section or {}), section_schema(path))
-    errors = sorted(_validator(prefix).iter_errors(filled), key=lambda e: (-len(e.absolute_path), str(e.path)))
-    if errors:  # the same messages as moorlife.config.validate_config, with the full dotted key
-        err = errors[0]
-        key = ".".join([prefix, *_relative_key(err)] if prefix else _relative_key(err)) or "<root>"
-        if err.validator == "additionalProperties":
-            raise ConfigError(f"{source}: unknown config key '{key}' (not in the schema; check its spelling)")
-        if err.validator == "required":
-            raise ConfigError(f"{source}: config key '{key}' is required")
-        raise ConfigError(f"{source}: config key '{key}' = {err.instance!r} is invalid: {err.message}")
+    filled = fill_defaults(_plain(section or {}), section_schema(path))
+    raise_first_error(_validator(prefix), filled, source, prefix)
     return filled
 
 
 @functools.cache
 def _validator(path: str) -> jsonschema.Draft202012Validator:
     return jsonschema.Draft202012Validator(section_schema(path))
-
-
-def _relative_key(error: jsonschema.ValidationError) -> list[str]:
-    parts = [str(p) for p in error.absolute_path]
-    if error.validator == "additionalProperties":  # the offending key is in the message, not the path
-        extra = sorted(set(error.instance) - set(error.schema.get("properties", {})))
-        parts.append(extra[0] if extra else "?")
-    elif error.validator == "required":
-        missing = [r for r in error.validator_value if r not in error.instance]
-        parts.append(missing[0] if missing else "?")
-    return parts
 
 
 def schema_leaf_names() -> frozenset[str]:
