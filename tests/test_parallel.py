@@ -302,3 +302,31 @@ def test_store_fingerprint_ignores_scheduling_settings(cases):
     assert result_settings(cfg, "simulation") == {"dt": 0.1}
     assert result_settings(cfg, "lifecycle") == {"rbf": {"shape": "fixed"}}
     assert cfg["lifecycle"]["rbf"]["chunk_rows"] == 10, "the config itself is left as it was"
+
+
+def test_progress_counts_states_and_estimates_the_time_left():
+    """Resumed states count as done and cost nothing; the estimate uses this run's rate only."""
+    t = iter([100.0, 110.0, 130.0])
+    p = parallel.Progress(total=40, todo=30, label="results/MS1/x.zarr", clock=lambda: next(t))
+    assert p.advance(10) == "results/MS1/x.zarr: 20/40 states (50 %), 10 s elapsed, about 20 s left"
+    assert p.advance(20) == "results/MS1/x.zarr: 40/40 states (100 %), 30 s elapsed, done"
+    assert parallel.format_duration(3725) == "1 h 02 min"
+    assert parallel.format_duration(75) == "1 min 15 s"
+
+
+def test_progress_lines_reach_the_log_and_a_throttled_terminal(tmp_path, cases, client, capfd):
+    """Every batch line goes to the rule's log; the terminal (fd 2 as it was before log_to
+    redirected it) gets the throttled lines, always the last one."""
+    from moorlife.io.logs import log_to
+
+    n = cases.sizes["case"]
+    with log_to(tmp_path / "rule.log") as log:
+        sink = _ListSink(n, 4)
+        parallel.map_batches(
+            noisy_case, cases, sink, dim="case", func_kwargs={"scale": 1.0}, client=client, log=log, label="x.zarr"
+        )
+    logged = (tmp_path / "rule.log").read_text()
+    assert logged.count(" states (") == 6 and f"{n}/{n} states (100 %)" in logged
+    terminal = [ln for ln in capfd.readouterr().err.splitlines() if ln.startswith("moorlife: x.zarr: ")]
+    assert terminal[-1].startswith(f"moorlife: x.zarr: {n}/{n} states (100 %)"), terminal
+    assert 1 <= len(terminal) <= 2, terminal  # the first line, then only the last one within 30 s

@@ -39,6 +39,8 @@ __all__ = [
     "dataset_digest",
     "BatchSink",
     "map_batches",
+    "Progress",
+    "format_duration",
 ]
 
 SCHEDULER_ENV = "DASK_SCHEDULER_ADDRESS"
@@ -52,6 +54,9 @@ BLAS_ENV: tuple[str, ...] = (
     "NUMBA_NUM_THREADS",
 )
 _log = logging.getLogger("moorlife.parallel")
+#: The progress lines for the terminal (:func:`moorlife.io.logs.log_to` shows them there).
+_progress = logging.getLogger("moorlife.progress")
+_progress.propagate = False  # the rule's log has the batch line already
 
 
 def pin_blas_threads() -> dict[str, str | None]:
@@ -274,6 +279,51 @@ def dataset_digest(ds: xr.Dataset) -> str:
     return h.hexdigest()
 
 
+def format_duration(seconds: float) -> str:
+    """``3725.0`` -> ``"1 h 02 min"``, ``75.0`` -> ``"1 min 15 s"``, ``8.2`` -> ``"8 s"``."""
+    s = max(0, int(round(seconds)))
+    if s >= 3600:
+        return f"{s // 3600} h {s % 3600 // 60:02d} min"
+    if s >= 60:
+        return f"{s // 60} min {s % 60:02d} s"
+    return f"{s} s"
+
+
+class Progress:
+    """States done, of how many, and the time left, for the log line of each finished batch.
+
+    The estimate is the elapsed time of this run per state computed in this run, times the
+    states still to do (states resumed from a partial store count as done and cost nothing).
+
+    Parameters
+    ----------
+    total : int
+        Every state of the store.
+    todo : int
+        The states this run computes (``total`` minus those already in the partial store).
+    label : str
+        What is computed, e.g. the store's path.
+    clock : callable
+        Seconds, monotonic (tests pass a fake one).
+    """
+
+    def __init__(self, total: int, todo: int, label: str = "", clock: Callable[[], float] = time.perf_counter):
+        self.total, self.todo, self.label, self.clock = int(total), int(todo), label, clock
+        self.done_here = 0
+        self.t0 = clock()
+
+    def advance(self, n: int) -> str:
+        """Count ``n`` more states done in this run; the progress line."""
+        self.done_here += int(n)
+        elapsed = self.clock() - self.t0
+        done = self.total - self.todo + self.done_here
+        left = self.todo - self.done_here
+        pct = 100.0 * done / self.total if self.total else 100.0
+        eta = "done" if left <= 0 else f"about {format_duration(elapsed / self.done_here * left)} left"
+        head = f"{self.label}: " if self.label else ""
+        return f"{head}{done}/{self.total} states ({pct:.0f} %), {format_duration(elapsed)} elapsed, {eta}"
+
+
 def _run_batch(
     func: Callable[..., Mapping[str, np.ndarray]],
     kwargs: Mapping[str, Any],
@@ -308,6 +358,7 @@ def map_batches(
     threads: int = 1,
     log: logging.Logger | None = None,
     client: Any | None = None,
+    label: str = "",
 ) -> None:
     """Map a pure per-case function over the batches still to do, handing each result to the sink.
 
@@ -332,6 +383,16 @@ def map_batches(
         Progress goes here (the rule's log).
     client : distributed.Client, optional
         Use this client instead of creating one.
+    label : str
+        Names the work in the progress lines (e.g. the store's path).
+
+    Notes
+    -----
+    After each finished batch one line goes to ``log`` (the rule's log): the batch, the states
+    done of how many, the elapsed time and an estimate of the time left (:class:`Progress`).
+    The same line goes to the ``moorlife.progress`` logger, which
+    :func:`moorlife.io.logs.log_to` shows on the terminal at most every
+    ``moorlife.io.logs.TERMINAL_EVERY`` seconds (and always the last one).
 
     Raises
     ------
@@ -345,7 +406,7 @@ def map_batches(
     slices = sink.slices
     ids = np.asarray(cases[dim].values)
     case_names = [k for k, v in cases.data_vars.items() if v.dims == (dim,) and v.dtype.kind in "fiub"]
-    t0 = time.perf_counter()
+    progress = Progress(len(ids), sum(len(range(len(ids))[slices[b]]) for b in todo), label)
 
     def _submit_all(cl: Any) -> None:
         [kw] = cl.scatter([dict(func_kwargs)], broadcast=True, hash=False)
@@ -368,14 +429,9 @@ def map_batches(
                 failure = failure or exc
                 continue
             sink.write(b, result)
-            log.info(
-                "batch %d/%d done (%d of %d this run, %.1f s)",
-                b + 1,
-                len(slices),
-                k,
-                len(todo),
-                time.perf_counter() - t0,
-            )
+            line = progress.advance(len(range(len(ids))[slices[b]]))
+            log.info("batch %d/%d done (%d of %d this run); %s", b + 1, len(slices), k, len(todo), line)
+            _progress.info(line, extra={"progress_final": k == len(todo)})
             fut.release()
         if failure is not None:
             raise failure

@@ -6,11 +6,30 @@ import contextlib
 import logging
 import os
 import sys
+import time
 import traceback
 from collections.abc import Iterator
 from pathlib import Path
 
-__all__ = ["log_to"]
+__all__ = ["log_to", "TERMINAL_EVERY", "ThrottleFilter"]
+
+#: Seconds between two progress lines on the terminal (the rule's log gets every one).
+TERMINAL_EVERY = 30.0
+
+
+class ThrottleFilter(logging.Filter):
+    """Pass a record at most every ``every`` seconds, and always one marked ``progress_final``."""
+
+    def __init__(self, every: float = TERMINAL_EVERY, clock=time.monotonic) -> None:
+        super().__init__()
+        self.every, self.clock, self.last = float(every), clock, -float("inf")
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        now = self.clock()
+        if getattr(record, "progress_final", False) or now - self.last >= self.every:
+            self.last = now
+            return True
+        return False
 
 
 @contextlib.contextmanager
@@ -26,6 +45,10 @@ def log_to(
 
     An exception raised inside the block is written to the log with its traceback and to
     standard error as one clear line, then re-raised so Snakemake marks the job failed.
+
+    The progress lines of the Dask fan-out (logger ``moorlife.progress``: states done, of how
+    many, time left) go to the terminal, the standard error Snakemake shows, at most every
+    :data:`TERMINAL_EVERY` seconds; the log gets every batch.
 
     Inside the block BLAS/OpenMP pools are limited to ``blas_threads`` (None: no limit).
     Snakemake exports ``OMP_NUM_THREADS`` equal to the rule's threads, and multi-threaded
@@ -48,6 +71,10 @@ def log_to(
         from threadpoolctl import threadpool_limits
 
         limits = threadpool_limits(limits=int(blas_threads))
+    terminal = _terminal_handler(capture_fds)
+    progress = logging.getLogger("moorlife.progress")
+    progress.setLevel(level)
+    progress.addHandler(terminal)
     fds = _fds_to(p) if capture_fds else contextlib.nullcontext()
     try:
         with limits, fds:
@@ -57,9 +84,38 @@ def log_to(
         print(f"moorlife error: {exc}", file=sys.stderr)
         raise
     finally:
+        progress.removeHandler(terminal)
+        terminal.close()
         logger.removeHandler(handler)
         logging.getLogger("py.warnings").removeHandler(handler)
         handler.close()
+
+
+def _terminal_handler(own_stream: bool) -> logging.Handler:
+    """A throttled handler on the terminal's standard error, opened before fd 2 is redirected."""
+    stream = sys.stderr
+    if own_stream:
+        try:
+            stream = os.fdopen(os.dup(2), "w", buffering=1, encoding="utf-8", closefd=True)
+        except OSError:
+            stream = sys.stderr
+    handler: logging.Handler = _OwnedStreamHandler(stream, own=stream is not sys.stderr)
+    handler.setFormatter(logging.Formatter("moorlife: %(message)s"))
+    handler.addFilter(ThrottleFilter())
+    return handler
+
+
+class _OwnedStreamHandler(logging.StreamHandler):
+    def __init__(self, stream, own: bool) -> None:
+        super().__init__(stream)
+        self.own = own
+
+    def close(self) -> None:
+        try:
+            if self.own:
+                self.stream.close()
+        finally:
+            super().close()
 
 
 def _flush_std() -> None:

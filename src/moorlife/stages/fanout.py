@@ -75,5 +75,7 @@ def map_cases(
     store = PartialStore(
         output, cases, dim=dim, fingerprint=fingerprint, batch_size=batch_size, attrs_of=attrs_of, log=log
     )
-    parallel.map_batches(func, cases, store, dim=dim, func_kwargs=func_kwargs, threads=threads, log=log, client=client)
+    parallel.map_batches(
+        func, cases, store, dim=dim, func_kwargs=func_kwargs, threads=threads, log=log, client=client, label=str(output)
+    )
     return store.finalise(attrs)
