@@ -537,3 +537,22 @@ def test_stage_reads_the_thrust_curve_for_per_output(tmp_path):
     np.testing.assert_allclose(lc["lifecycle_damage"].sel(curve="sn").values, np.array([2e-6, 5e-6, 1e-6]) * 400)
     with pytest.raises(ValueError, match="needs platform_cfg"):
         st_lifecycle.run(**paths, store=tmp_path / "lc2.zarr", lifecycle=cfg, fatigue={}, threads=1)
+
+
+def test_per_output_transform_candidates_per_output_kind():
+    hc = _hindcast(300, seed=28)
+    cases = _cases(hc, 50, 5, seed=29)
+    sims = _sims(cases)
+    cols = lifecycle.output_columns(sims, "case", lifecycle.DEFAULT_OUTPUTS)
+    x, y = lifecycle._points(cases, "case"), lifecycle.stack_outputs(sims, "case", cols)
+    is_dmg = np.array([c[0].startswith("damage") for c in cols])
+    y[:, is_dmg] *= np.exp(0.3 * x[:, 2:3])  # positive, rising with Hs
+    cfg = {**PER_OUTPUT, "spaces": ["paper"], "transforms": ["linear"], "damage_transforms": ["log10"]}
+    model = lifecycle.fit_outputs(x, y, cols, lifecycle.RBFSettings.from_config(cfg))
+    np.testing.assert_array_equal(model.log_output, is_dmg)
+    np.testing.assert_array_equal(model.input_space, ["paper"] * len(cols))
+    flipped = {**cfg, "transforms": ["log10"], "damage_transforms": ["linear"]}
+    model = lifecycle.fit_outputs(x, y, cols, lifecycle.RBFSettings.from_config(flipped))
+    np.testing.assert_array_equal(model.log_output, ~is_dmg)  # every other output is positive here
+    forced = lifecycle.fit_outputs(x, y, cols, lifecycle.RBFSettings.from_config(flipped), log_damage=True)
+    np.testing.assert_array_equal(forced.log_output, np.ones(len(cols), bool))

@@ -9,9 +9,12 @@ Two ways to choose each output's interpolant (``lifecycle.rbf.choose``):
 ``per_output``
     Every output takes, among the candidate input spaces (``lifecycle.rbf.spaces``: the paper
     space, or with the rotor thrust ``T(W)`` as a sixth coordinate, :mod:`moorlife.lifecycle.spaces`),
-    the candidate transforms (``lifecycle.rbf.transforms``), the ``q0`` candidates and the
-    smoothing candidates, the one with the smallest leave-one-out RMS error in its own units
-    (:func:`moorlife.rbf.choose_per_output`), from the training states alone.
+    the candidate transforms (``lifecycle.rbf.transforms``; ``lifecycle.rbf.damage_transforms``
+    for the damage), the ``q0`` candidates and the smoothing candidates, the one with the
+    smallest leave-one-out RMS error in its own units (:func:`moorlife.rbf.choose_per_output`),
+    from the training states alone. The leave-one-out errors are those of the training states,
+    which maximum dissimilarity puts on the boundary of the sea-state space: they weight the
+    extremes more than the hindcast hours do.
 
 In both, ``lifecycle.rbf.retransform`` sets the back-transform correction of the ``log10``
 outputs (:mod:`moorlife.rbf.transform`). The result is a :class:`Reconstruction`: one
@@ -318,11 +321,10 @@ def _fit_per_output(
 ) -> Reconstruction:
     """``choose: per_output``: the leave-one-out choice per output, then one fit per space in use."""
     y = np.asarray(values, dtype=float)
-    n_out = y.shape[1]
     # log10 candidates: every positive output, and the damage (zeros floored, as with log_damage)
-    can_log = np.all(y > 0, axis=0) | is_dmg
-    log_ok = can_log & ("log10" in settings.transforms)
-    lin_ok = np.full(n_out, "linear" in settings.transforms) | ~log_ok
+    cands = [settings.damage_transforms if d else settings.transforms for d in is_dmg]
+    log_ok = (np.all(y > 0, axis=0) | is_dmg) & np.array(["log10" in c for c in cands])
+    lin_ok = np.array(["linear" in c for c in cands]) | ~log_ok
     if forced is not None:
         log_ok[is_dmg] = forced
         lin_ok[is_dmg] = ~forced

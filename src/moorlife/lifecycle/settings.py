@@ -37,8 +37,9 @@ class RBFSettings:
         error in the output's units (:func:`moorlife.rbf.choose_per_output`).
     spaces : tuple of str
         Candidate input spaces of ``per_output`` (``names.RBF_SPACES``).
-    transforms : tuple of str
-        Candidate transforms of ``per_output`` (``names.RBF_TRANSFORMS``).
+    transforms, damage_transforms : tuple of str
+        Candidate transforms of ``per_output`` (``names.RBF_TRANSFORMS``) of the outputs other
+        than the damage, and of the damage.
     retransform : {"none", "smearing", "ratio"}
         Back-transform correction of the ``log10`` outputs (:mod:`moorlife.rbf.transform`).
     chunk_rows : int
@@ -59,6 +60,7 @@ class RBFSettings:
     choose: str
     spaces: tuple[str, ...]
     transforms: tuple[str, ...]
+    damage_transforms: tuple[str, ...]
     retransform: str
     chunk_rows: int
     outputs: tuple[str, ...]
@@ -92,6 +94,7 @@ class RBFSettings:
             choose=str(s["choose"]),
             spaces=tuple(str(v) for v in s["spaces"]),
             transforms=tuple(str(v) for v in s["transforms"]),
+            damage_transforms=tuple(str(v) for v in s["damage_transforms"]),
             retransform=str(s["retransform"]),
             chunk_rows=int(s["chunk_rows"]),
             outputs=tuple(s["outputs"]),
