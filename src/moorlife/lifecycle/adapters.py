@@ -187,8 +187,9 @@ def reconstruct_lifecycle(
     xarray.Dataset
         Dims ``time``, ``line``, ``curve``, ``output``, ``train``, ``suggestion``: every
         rebuilt output on ``time`` (and ``line``); per output the shape parameter, input space,
-        transform, back-transform factor, LOO RMSE and validation metrics; per line and curve the life-cycle damage, yearly and design-life
-        damage, fatigue life, DFF and verdict; the adaptive-selection suggestions.
+        transform, back-transform factor, LOO RMSE and validation metrics; per line and curve
+        the life-cycle damage, yearly and design-life damage, fatigue life, DFF and verdict;
+        the adaptive-selection suggestions.
     """
     dim = names.CASE
     common = np.intersect1d(cases[dim].values, sims[dim].values)
