@@ -3,6 +3,7 @@
 Run:  .venv/bin/python benchmarks/bench_rbf.py                 (paper scale)
       .venv/bin/python benchmarks/bench_rbf.py --hours 50000   (quicker)
       .venv/bin/python benchmarks/bench_rbf.py --skip-bluemath
+      .venv/bin/python benchmarks/bench_rbf.py --choice-only   (section 5 only)
 
 Data: the synthetic BiMEP-like hindcast of moorlife.metocean (31 years = 271,728 hours, seed
 20190601), 1,000 training states by moorlife.selection.mda (from the largest Hs) and 225
@@ -23,6 +24,11 @@ west-north-west seas), so that the timing and the transform comparison are meani
 4. Validation on the 225 states: r and RMSE per output; damage interpolated linearly vs as
    log10 (the lifecycle default is chosen from this and from the real simulations); and the
    error of the life damage (sum over every hour) against the true sum of the surfaces.
+5. The choice of ``lifecycle.rbf.choose``: ``lifecycle.fit_outputs`` + ``predict_outputs`` with
+   the default settings (``global``) and with ``per_output`` (spaces paper and thrust, with
+   the NREL 5 MW thrust curve of ``config/platform.yaml``; transforms linear and log10, or the
+   damage kept log10), with each back-transform correction, in the same run: cost, its ratio to the default, choices,
+   validation r and the error of the life damage against the true sum.
 """
 
 from __future__ import annotations
@@ -95,6 +101,7 @@ def main() -> None:
     ap.add_argument("--hours", type=int, default=None, help="use only the first N hours")
     ap.add_argument("--skip-bluemath", action="store_true")
     ap.add_argument("--bluemath-outputs", type=int, default=1)
+    ap.add_argument("--choice-only", action="store_true", help="run section 5 only (lifecycle.rbf.choose)")
     args = ap.parse_args()
 
     pts = hindcast_points()
@@ -112,6 +119,9 @@ def main() -> None:
 
     # warm up the numba kernels (compilation is cached, not part of the measurement)
     rbf.predict_rbf(rbf.fit_rbf(pts[train[:50]], y[:50, :2], is_direction=MASK, shape=0.2), pts[:100])
+    if args.choice_only:
+        choice_section(pts, train, valid, y, y_val, labels, lo, span)
+        return
 
     # 1. ours at paper scale
     st = RBFSettings.from_config({})
@@ -229,6 +239,46 @@ def main() -> None:
     for k, m in variants.items():
         p = rbf.predict_rbf(m, pts[valid])[:, is_dmg].sum(axis=0)
         print(f"{k}: validation damage sum error {np.round(100 * (p / tot_true - 1), 2)} %")
+
+
+def choice_section(pts, train, valid, y, y_val, labels, lo, span) -> None:
+    """5. lifecycle.rbf.choose: global (the default) vs per_output, cost and quality, same run."""
+    from pathlib import Path
+
+    from moorlife import lifecycle
+    from moorlife.io import read_yaml
+
+    curve = lifecycle.thrust_curve(read_yaml(Path(__file__).resolve().parents[1] / "config/platform.yaml"))
+    cols = [(lab, None) for lab in labels]
+    is_dmg = np.array([lab.startswith("damage") for lab in labels])
+    y_all, _ = responses(pts)
+    true_sum = y_all[:, is_dmg].sum(axis=0)
+    variants = {
+        "global (default)": {},
+        "global + smearing": {"retransform": "smearing"},
+        "per_output": {"choose": "per_output"},
+        "per_output, damage log10": {"choose": "per_output", "damage_transforms": ["log10"]},
+        "  + smearing": {"choose": "per_output", "damage_transforms": ["log10"], "retransform": "smearing"},
+        "  + ratio": {"choose": "per_output", "damage_transforms": ["log10"], "retransform": "ratio"},
+    }
+    base = None
+    print("\n[5. lifecycle.rbf.choose] fit 1,000 + predict every hour x 16 outputs")
+    for name, cfg in variants.items():
+        st = lifecycle.RBFSettings.from_config(cfg)
+        model, t_fit, c_fit = timed(lifecycle.fit_outputs, pts[train], y, cols, st, lo=lo, span=span, thrust=curve)
+        pred, t_pred, c_pred = timed(lifecycle.predict_outputs, model, pts, chunk_rows=st.chunk_rows)
+        total = t_fit + t_pred
+        base = total if base is None else base
+        r = metrics(lifecycle.predict_outputs(model, pts[valid]), y_val)[0]
+        life = 100 * (pred[:, is_dmg].sum(axis=0) / true_sum - 1)
+        print(
+            f"{name:<25} fit {t_fit:.2f} s (cpu {c_fit:.2f}), predict {t_pred:.2f} s (cpu {c_pred:.2f}), "
+            f"total {total:.2f} s, {total / base:.2f}x the default; validation r min {r.min():.4f}, "
+            f"damage {r[is_dmg].min():.4f}; life damage vs truth {np.round(life, 2)} %"
+        )
+        if cfg.get("choose") == "per_output" and "retransform" not in cfg and "damage_transforms" not in cfg:
+            for lab, sp, lg, q in zip(labels, model.input_space, model.log_output, model.shape):
+                print(f"    {lab:<18} {sp:<6} {'log10' if lg else 'linear':<6} q0 {q:.4g}")
 
 
 if __name__ == "__main__":

@@ -421,3 +421,138 @@ def test_selection_normalisation_is_used_in_any_attribute_order():
     cases.attrs.update(norm_lo=[0.0] * 4)
     with pytest.raises(ValueError, match="inconsistent"):
         lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=0)
+
+
+# ------------------------------------------------------------------ per-output space and transform
+def _thrust_curve() -> lifecycle.ThrustCurve:
+    from pathlib import Path
+
+    from moorlife.io import read_yaml
+
+    return lifecycle.thrust_curve(read_yaml(Path(__file__).resolve().parents[1] / "config/platform.yaml"))
+
+
+PER_OUTPUT = {"choose": "per_output", "grid": {"n": 8}, "outputs": list(lifecycle.DEFAULT_OUTPUTS)}
+
+
+def test_thrust_coordinate_is_t_of_w_scaled_by_its_range_over_the_wind_range():
+    curve = _thrust_curve()
+    x = np.array([[11.3, 0.0, 1.0, 8.0, 0.0], [5.0, 90.0, 2.0, 9.0, 180.0], [30.0, 0.0, 1.0, 8.0, 0.0]])
+    lo, span = [0.0, 0.0, 0.0, 2.0, 0.0], [30.0, 180.0, 10.0, 20.0, 180.0]
+    x6, mask, lo6, span6 = lifecycle.space_inputs("thrust", x, lo, span, curve)
+    np.testing.assert_array_equal(x6[:, :5], x)
+    np.testing.assert_array_equal(x6[:, 5], lifecycle.thrust_at(curve, x[:, 0]))
+    np.testing.assert_array_equal(mask, [False, True, False, False, True, False])
+    assert x6[2, 5] == 0.0 and x6[0, 5] == pytest.approx(819e3, rel=0.01)  # above cut-out; the rated peak
+    assert lo6[5] == 0.0 and span6[5] == pytest.approx(x6[0, 5], rel=1e-3)  # 0 .. the peak over W in [0, 30]
+    np.testing.assert_array_equal(lo6[:5], lo)
+    # above rated only: from T(25 m/s) to T(15 m/s)
+    _, _, lo_b, span_b = lifecycle.space_inputs("thrust", x, [15.0, 0, 0, 2, 0], [10.0, 180, 10, 20, 180], curve)
+    t15, t25 = lifecycle.thrust_at(curve, [15.0, 25.0])
+    assert lo_b[5] == pytest.approx(t25) and span_b[5] == pytest.approx(t15 - t25)
+    assert lifecycle.space_inputs("paper", x, lo, span)[0] is not None
+    with pytest.raises(ValueError, match="thrust curve"):
+        lifecycle.space_inputs("thrust", x, lo, span)
+    with pytest.raises(ValueError, match="unknown RBF input space"):
+        lifecycle.space_inputs("6d", x, lo, span, curve)
+
+
+def _ridge_outputs(cases: xr.Dataset, curve: lifecycle.ThrustCurve) -> np.ndarray:
+    """A damage sharp in W around rated (a power of T(W)) and a motion smooth in the 5-D space."""
+    w, _, hs, tp, alpha = lifecycle._points(cases, "case").T
+    t = lifecycle.thrust_at(curve, w) / 819e3
+    ridge = 1e-6 * t**8 * (1 + 0.1 * hs) + 1e-9
+    smooth = 1.0 + 0.3 * hs**2 + 0.004 * w**2 + 0.2 * np.cos(np.deg2rad(alpha)) + 0.05 * tp
+    return np.column_stack([ridge, smooth])
+
+
+def test_per_output_choice_takes_the_thrust_space_for_a_thrust_ridge_only():
+    curve = _thrust_curve()
+    hc = _hindcast(3000, seed=21)
+    cases = _cases(hc, 150, 30, seed=22)
+    x, y = lifecycle._points(cases, "case"), _ridge_outputs(cases, curve)
+    tr = cases["role"].values == "train"
+    cols = [("damage_sn", "M1"), ("surge_mpm", None)]
+    settings = lifecycle.RBFSettings.from_config(PER_OUTPUT)
+    model = lifecycle.fit_outputs(x[tr], y[tr], cols, settings, thrust=curve)
+    np.testing.assert_array_equal(model.input_space, ["thrust", "paper"])
+    assert model.spaces == ("paper", "thrust") and model.models[1].centres.shape == (150, 6)
+    paper = lifecycle.fit_outputs(
+        x[tr], y[tr], cols, lifecycle.RBFSettings.from_config({**PER_OUTPUT, "spaces": ["paper"]})
+    )
+    assert model.loo_rmse_units[0] < 0.5 * paper.loo_rmse_units[0]
+    r = lifecycle.validation_metrics(lifecycle.predict_outputs(model, x[~tr]), y[~tr])["r"]
+    r_paper = lifecycle.validation_metrics(lifecycle.predict_outputs(paper, x[~tr]), y[~tr])["r"]
+    assert r[0] > 0.99 and r[0] > r_paper[0] + 0.2  # the ridge: the paper space smooths it out
+    assert r[1] == r_paper[1]  # the smooth output: the same choice, the same model
+    with pytest.raises(ValueError, match="thrust curve"):
+        lifecycle.fit_outputs(x[tr], y[tr], cols, settings)
+
+
+def test_per_output_fit_does_not_depend_on_the_validation_states():
+    """Perturbing the validation outputs changes the validation metrics and nothing else."""
+    curve = _thrust_curve()
+    hc = _hindcast(1500, seed=23)
+    cases = _cases(hc, 90, 25, seed=24)
+    sims = _sims(cases)
+    y = _ridge_outputs(cases, curve)
+    sims["damage_sn"] = (("case", "line"), np.outer(y[:, 0], [1.0, 0.5, 2.0]))
+    sims["heave_mpm"] = ("case", y[:, 1])
+    settings = lifecycle.RBFSettings.from_config({**PER_OUTPUT, "retransform": "smearing", "smoothing": [0.0, 0.01]})
+    a = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=5, thrust=curve)
+    val = cases["role"].values == "validate"
+    rng = np.random.default_rng(25)
+    for v in ("damage_sn", "heave_mpm", "surge_mpm", "tension_mpm"):
+        scale = rng.uniform(0.2, 5.0, (int(val.sum()),) + sims[v].shape[1:])
+        sims[v][val] = sims[v].values[val] * scale
+    b = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=5, thrust=curve)
+    assert set(a["input_space"].values) == {"paper", "thrust"} and a.attrs["rbf_choose"] == "per_output"
+    assert np.any(a["retransform_factor"].values != 1.0)
+    changed = [v for v in a.data_vars if not a[v].equals(b[v])]
+    assert changed and all(v.startswith("validation_") for v in changed), changed
+    assert "validation_simulated" in changed
+    for v in ("shape_parameter", "smoothing", "input_space", "transform", "retransform_factor", "loo_error"):
+        np.testing.assert_array_equal(a[v].values, b[v].values)
+    np.testing.assert_array_equal(a["damage_sn"].values, b["damage_sn"].values)
+
+
+def test_stage_reads_the_thrust_curve_for_per_output(tmp_path):
+    from pathlib import Path
+
+    from moorlife.io import open_zarr, write_zarr
+    from moorlife.stages import lifecycle as st_lifecycle
+
+    hc = _hindcast(400, seed=26)
+    cases = _cases(hc, 40, 8, seed=27)
+    for name, ds in (("hindcast", hc), ("cases", cases), ("sims", _sims(cases))):
+        write_zarr(ds, tmp_path / f"{name}.zarr")
+    paths = dict(hindcast=tmp_path / "hindcast.zarr", cases=tmp_path / "cases.zarr", simulations=tmp_path / "sims.zarr")
+    cfg = {"rbf": {"choose": "per_output", "shape": "fixed", "retransform": "ratio"}, "adaptive": {"n_suggest": 0}}
+    platform = Path(__file__).resolve().parents[1] / "config/platform.yaml"
+    st_lifecycle.run(**paths, store=tmp_path / "lc.zarr", lifecycle=cfg, fatigue={}, platform_cfg=platform, threads=1)
+    lc = open_zarr(tmp_path / "lc.zarr")
+    assert lc.attrs["rbf_choose"] == "per_output" and lc.attrs["rbf_retransform"] == "ratio"
+    assert set(lc["input_space"].values) <= {"paper", "thrust"}
+    assert set(lc["transform"].values) <= {"linear", "log10"} and lc["loo_rmse_units"].sizes["output"] == 11
+    np.testing.assert_allclose(lc["lifecycle_damage"].sel(curve="sn").values, np.array([2e-6, 5e-6, 1e-6]) * 400)
+    with pytest.raises(ValueError, match="needs platform_cfg"):
+        st_lifecycle.run(**paths, store=tmp_path / "lc2.zarr", lifecycle=cfg, fatigue={}, threads=1)
+
+
+def test_per_output_transform_candidates_per_output_kind():
+    hc = _hindcast(300, seed=28)
+    cases = _cases(hc, 50, 5, seed=29)
+    sims = _sims(cases)
+    cols = lifecycle.output_columns(sims, "case", lifecycle.DEFAULT_OUTPUTS)
+    x, y = lifecycle._points(cases, "case"), lifecycle.stack_outputs(sims, "case", cols)
+    is_dmg = np.array([c[0].startswith("damage") for c in cols])
+    y[:, is_dmg] *= np.exp(0.3 * x[:, 2:3])  # positive, rising with Hs
+    cfg = {**PER_OUTPUT, "spaces": ["paper"], "transforms": ["linear"], "damage_transforms": ["log10"]}
+    model = lifecycle.fit_outputs(x, y, cols, lifecycle.RBFSettings.from_config(cfg))
+    np.testing.assert_array_equal(model.log_output, is_dmg)
+    np.testing.assert_array_equal(model.input_space, ["paper"] * len(cols))
+    flipped = {**cfg, "transforms": ["log10"], "damage_transforms": ["linear"]}
+    model = lifecycle.fit_outputs(x, y, cols, lifecycle.RBFSettings.from_config(flipped))
+    np.testing.assert_array_equal(model.log_output, ~is_dmg)  # every other output is positive here
+    forced = lifecycle.fit_outputs(x, y, cols, lifecycle.RBFSettings.from_config(flipped), log_damage=True)
+    np.testing.assert_array_equal(forced.log_output, np.ones(len(cols), bool))

@@ -279,3 +279,79 @@ def test_loo_residuals_equal_rippa_on_the_block_inverse(smoothing):
     assert rc == rc_h > 0
     bad, rc0 = rbf.loo_residuals(np.ones((90, 90)), basis, y)
     assert bad is None and rc0 == 0.0
+
+
+# ------------------------------------------------------------------ back-transform and per-output choice
+def test_retransform_factor_known_answers():
+    a = 0.2
+    ly = np.array([[0.0], [1.0]])  # y = 1 and 10
+    e = np.array([[a], [-a]])  # leave-one-out predictions 10**-a and 10**(1 + a)
+    np.testing.assert_array_equal(rbf.retransform_factor(ly, e, "none"), [1.0])
+    np.testing.assert_allclose(rbf.retransform_factor(ly, e, "smearing"), [(10**a + 10**-a) / 2], rtol=1e-15)
+    np.testing.assert_allclose(rbf.retransform_factor(ly, e, "ratio"), [11 / (10**-a + 10 ** (1 + a))], rtol=1e-15)
+    np.testing.assert_allclose(rbf.loo_error_in_units(10**ly, ly, e, [2.0])[:, 0], [1 - 2 * 10**-a, 10 - 2 * 10**1.2])
+    # lognormal residuals: the smearing factor is the mean of 10**e = exp((sigma ln 10)^2 / 2)
+    sigma = 0.15
+    eps = np.random.default_rng(3).normal(0.0, sigma, (400_000, 1))
+    got = rbf.retransform_factor(np.zeros_like(eps), eps, "smearing")[0]
+    assert got == pytest.approx(np.exp((sigma * np.log(10)) ** 2 / 2), rel=2e-3)
+    assert got > 1.05  # the median back-transform alone would be 5 % low
+    with pytest.raises(ValueError, match="unknown back-transform"):
+        rbf.retransform_factor(ly, e, "mean")
+
+
+@pytest.mark.parametrize("method", ["smearing", "ratio"])
+def test_back_transform_factor_equals_brute_force_leave_one_out(method):
+    """The factor of a fit is that of the refits without each state, and multiplies every prediction."""
+    x = _sea_states(40, seed=31)
+    y = 10 ** (-6 + 0.3 * x[:, 2] + 0.2 * np.sin(x[:, 3]))  # decades of damage, wiggly in Tp
+    q = 0.3
+    plain = rbf.fit_rbf(x, y, is_direction=DIRS5, shape=q, log_output=True)
+    model = rbf.fit_rbf(x, y, is_direction=DIRS5, shape=q, log_output=True, retransform=method)
+    lo, span = model.space.lower, model.space.scale
+    pred = np.empty(40)  # median (uncorrected) prediction at each state of the fit without it
+    for k in range(40):
+        keep = np.arange(40) != k
+        sub = rbf.fit_rbf(x[keep], y[keep], is_direction=DIRS5, shape=q, log_output=True, lo=lo, span=span)
+        pred[k] = rbf.predict_rbf(sub, x[k : k + 1])[0, 0]
+    expect = np.mean(y / pred) if method == "smearing" else y.sum() / pred.sum()
+    assert model.log_factor[0] == pytest.approx(expect, rel=1e-8)
+    assert plain.log_factor[0] == 1.0 and abs(model.log_factor[0] - 1) > 1e-3
+    xq = _sea_states(300, seed=32)
+    np.testing.assert_allclose(
+        rbf.predict_rbf(model, xq)[:, 0], model.log_factor[0] * rbf.predict_rbf(plain, xq)[:, 0], rtol=1e-13
+    )
+    np.testing.assert_array_equal(model.weights, plain.weights)
+
+
+def test_per_output_choice_picks_log_for_lognormal_and_linear_for_linear_outputs():
+    x = _sea_states(120, seed=41)
+    lognormal = 10 ** (-7 + 0.5 * x[:, 2] + 0.3 * np.cos(np.deg2rad(x[:, 4])))  # spans four decades
+    linear = 3.0 + 0.5 * x[:, 2] + 0.1 * x[:, 3] + 0.02 * x[:, 0]  # positive: log10 is a candidate too
+    y = np.column_stack([lognormal, linear])
+    geometry = [rbf.centre_geometry(x, DIRS5)]
+    grid = rbf.shape_grid(0.05, 1.0, 8)
+    choice = rbf.choose_per_output(
+        geometry, y, shapes=grid, log_values=np.log10(y), log_candidate=[True, True], retransform="smearing"
+    )
+    np.testing.assert_array_equal(choice.log_output, [True, False])
+    np.testing.assert_array_equal(choice.space, [0, 0])
+    assert choice.best[0, 1, 0] < choice.best[0, 0, 0] and choice.best[0, 0, 1] < choice.best[0, 1, 1]
+    # the score is the leave-one-out RMSE in the output's units of the predictor used (brute force)
+    model = rbf.fit_rbf_fixed(
+        x, y[:, :1], is_direction=DIRS5, shape=choice.shape[0], log_output=True, retransform="smearing"
+    )
+    lo, span = model.space.lower, model.space.scale
+    err = np.empty(120)
+    for k in range(120):
+        keep = np.arange(120) != k
+        sub = rbf.fit_rbf_fixed(
+            x[keep], y[keep, :1], is_direction=DIRS5, shape=choice.shape[0], log_output=True, lo=lo, span=span
+        )
+        err[k] = y[k, 0] - model.log_factor[0] * rbf.predict_rbf(sub, x[k : k + 1])[0, 0]
+    assert choice.loo_rmse[0] == pytest.approx(np.sqrt(np.mean(err**2)), rel=1e-6)
+    # without a log candidate the lognormal output stays linear
+    lin = rbf.choose_per_output(geometry, y, shapes=grid)
+    np.testing.assert_array_equal(lin.log_output, [False, False])
+    with pytest.raises(ValueError, match="no transform candidate"):
+        rbf.choose_per_output(geometry, y, shapes=grid, linear_candidate=[False, True])

@@ -8,6 +8,7 @@ rule lifecycle:
         hindcast="results/metocean/hindcast.zarr",
         cases="results/selection/cases.zarr",
         simulations="results/{ms}/simulations.zarr",
+        platform_cfg=config["platform"],
     output:
         store=directory("results/{ms}/lifecycle.zarr"),
     log:

@@ -21,7 +21,9 @@ by the workflow scripts. Conventions:
   adjacent to the most damaged one over the most damaged (:func:`fatigue.adjacent_damage_ratio`).
 
 Modules: :mod:`~moorlife.lifecycle.settings` (``RBFSettings``), :mod:`~moorlife.lifecycle.outputs`
-(outputs <-> matrices), :mod:`~moorlife.lifecycle.fit` (fit and validation metrics),
+(outputs <-> matrices), :mod:`~moorlife.lifecycle.spaces` (the candidate input spaces: the
+paper's 5-D space, or with the rotor thrust), :mod:`~moorlife.lifecycle.fit` (fit, with the
+global or per-output choice, prediction and validation metrics),
 :mod:`~moorlife.lifecycle.damage` (damage arithmetic), :mod:`~moorlife.lifecycle.uncertainty`,
 :mod:`~moorlife.lifecycle.adapters` (the xarray/pandas adapters) and
 :mod:`~moorlife.lifecycle.sensitivity`.
@@ -48,7 +50,7 @@ from moorlife.lifecycle.damage import (
     life_damage,
     recommend,
 )
-from moorlife.lifecycle.fit import fit_outputs, validation_metrics
+from moorlife.lifecycle.fit import Reconstruction, fit_outputs, predict_outputs, validation_metrics
 from moorlife.lifecycle.outputs import (
     DEFAULT_OUTPUTS,
     output_columns,
@@ -62,6 +64,7 @@ from moorlife.lifecycle.sensitivity import (
     seed_lives,
 )
 from moorlife.lifecycle.settings import RBFSettings, rbf_settings
+from moorlife.lifecycle.spaces import ThrustCurve, space_inputs, thrust_at, thrust_curve
 from moorlife.lifecycle.uncertainty import error_indicator, life_band, suggest_states
 
 __all__ = [
@@ -74,7 +77,13 @@ __all__ = [
     "stack_outputs",
     "unstack_outputs",
     "validation_metrics",
+    "Reconstruction",
     "fit_outputs",
+    "predict_outputs",
+    "ThrustCurve",
+    "thrust_curve",
+    "thrust_at",
+    "space_inputs",
     "life_damage",
     "damage_per_year",
     "design_check",

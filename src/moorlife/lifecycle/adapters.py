@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from moorlife import fatigue, names, rbf
+from moorlife import fatigue, names
 from moorlife.lifecycle.damage import (
     DAMAGE_VARS,
     HOURS_PER_YEAR,
@@ -25,7 +25,7 @@ from moorlife.lifecycle.damage import (
     discrete_damage,
     life_damage,
 )
-from moorlife.lifecycle.fit import fit_outputs, validation_metrics
+from moorlife.lifecycle.fit import Reconstruction, fit_outputs, predict_outputs, validation_metrics
 from moorlife.lifecycle.outputs import (
     _label,
     output_columns,
@@ -34,6 +34,7 @@ from moorlife.lifecycle.outputs import (
 )
 from moorlife.lifecycle.sensitivity import corrosion_evolution
 from moorlife.lifecycle.settings import RBFSettings
+from moorlife.lifecycle.spaces import ThrustCurve
 from moorlife.lifecycle.uncertainty import error_indicator, life_band, suggest_states
 
 __all__ = ["reconstruct_lifecycle", "discrete_damage_table", "summary_table"]
@@ -69,8 +70,8 @@ def _a(long_name: str, units: str = "1") -> dict[str, str]:
     return {"units": units, "long_name": long_name}
 
 
-def _fit_vars(out: xr.Dataset, model: rbf.RBFModel, x_train: np.ndarray, ids: np.ndarray) -> xr.Dataset:
-    """Shape parameters, transforms and leave-one-out residuals of the fit."""
+def _fit_vars(out: xr.Dataset, model: Reconstruction, x_train: np.ndarray, ids: np.ndarray) -> xr.Dataset:
+    """Shape parameters, input spaces, transforms and leave-one-out residuals of the fit."""
     out = out.assign_coords(train=("train", ids))
     out["shape_parameter"] = ("output", model.shape, _a("RBF shape parameter q0 (normalised distance)"))
     out["smoothing"] = ("output", model.smoothing, _a("RBF ridge term on the kernel diagonal (0: exact)"))
@@ -80,16 +81,24 @@ def _fit_vars(out: xr.Dataset, model: rbf.RBFModel, x_train: np.ndarray, ids: np
         _a("Rippa leave-one-out RMSE (transformed space)"),
     )
     out["log_transform"] = ("output", model.log_output.astype(np.int8), _a("1 if interpolated as log10"))
+    transform = np.where(model.log_output, names.RBF_TRANSFORMS[1], names.RBF_TRANSFORMS[0])
+    for key, val in (
+        (names.RBF_INPUT_SPACE, model.input_space),
+        (names.RBF_TRANSFORM, transform),
+        (names.RBF_LOG_FACTOR, model.log_factor),
+        (names.RBF_LOO_RMSE_UNITS, model.loo_rmse_units),
+    ):
+        out[key] = ("output", val, dict(names.RBF_CHOICE_ATTRS[key]))
     out["train_points"] = (("train", "metocean_var"), x_train, _a("training sea states (physical units)"))
     out["loo_error"] = (("train", "output"), model.loo_error, _a("leave-one-out residual per training state"))
     return out
 
 
 def _validation_vars(
-    out: xr.Dataset, model: rbf.RBFModel, x_val: np.ndarray, y_val: np.ndarray, ids: np.ndarray
+    out: xr.Dataset, model: Reconstruction, x_val: np.ndarray, y_val: np.ndarray, ids: np.ndarray
 ) -> xr.Dataset:
     """Rebuilt vs simulated values on the validation states and their metrics."""
-    pv = rbf.predict_rbf(model, x_val)
+    pv = predict_outputs(model, x_val)
     for k, v in validation_metrics(pv, y_val).items():
         out[f"validation_{k}"] = ("output", v, _a(f"validation {k} on {len(ids)} states"))
     out = out.assign_coords(validate=("validate", ids))
@@ -127,7 +136,7 @@ def _damage_vars(out: xr.Dataset, n_hours: int, fs: fatigue.FatigueSettings) -> 
 
 
 def _uncertainty_vars(
-    out: xr.Dataset, model: rbf.RBFModel, hp: np.ndarray, scale: np.ndarray, n_suggest: int
+    out: xr.Dataset, model: Reconstruction, hp: np.ndarray, scale: np.ndarray, n_suggest: int
 ) -> xr.Dataset:
     """Error indicator per hour and the adaptive-selection suggestions."""
     ind, dist = error_indicator(model, hp, scale)
@@ -148,6 +157,7 @@ def reconstruct_lifecycle(
     fatigue_cfg: Mapping[str, Any] | None = None,
     n_suggest: int = 50,
     compare_transforms: bool = True,
+    thrust: ThrustCurve | None = None,
 ) -> xr.Dataset:
     """Rebuild every output for every hindcast hour, with validation and life damage.
 
@@ -166,15 +176,20 @@ def reconstruct_lifecycle(
     n_suggest : int
         Number of adaptive-selection suggestions.
     compare_transforms : bool
-        Also validate the other damage transform (linear vs log10) and store its metrics.
+        Also validate the other damage transform (linear vs log10; with ``per_output``, the
+        other of each damage output's chosen transform) and store its metrics.
+    thrust : ThrustCurve, optional
+        The turbine's thrust curve (:func:`moorlife.lifecycle.spaces.thrust_curve`), required
+        when ``settings.choose`` is ``per_output`` with the ``thrust`` space among the candidates.
 
     Returns
     -------
     xarray.Dataset
         Dims ``time``, ``line``, ``curve``, ``output``, ``train``, ``suggestion``: every
-        rebuilt output on ``time`` (and ``line``); per output the shape parameter, LOO RMSE and
-        validation metrics; per line and curve the life-cycle damage, yearly and design-life
-        damage, fatigue life, DFF and verdict; the adaptive-selection suggestions.
+        rebuilt output on ``time`` (and ``line``); per output the shape parameter, input space,
+        transform, back-transform factor, LOO RMSE and validation metrics; per line and curve
+        the life-cycle damage, yearly and design-life damage, fatigue life, DFF and verdict;
+        the adaptive-selection suggestions.
     """
     dim = names.CASE
     common = np.intersect1d(cases[dim].values, sims[dim].values)
@@ -192,7 +207,7 @@ def reconstruct_lifecycle(
         raise ValueError(f"simulations: {_label(cols[j])} is not finite for case {int(common[i])} ({y[i, j]!r})")
     x = _points(cases, dim)
     lo, span = _selection_scaling(cases)
-    model = fit_outputs(x[train], y[train], cols, settings, lo=lo, span=span)
+    model = fit_outputs(x[train], y[train], cols, settings, lo=lo, span=span, thrust=thrust)
     labels = [_label(c) for c in cols]
     log.info(
         "RBF fitted on %d training states, %d outputs; shapes %s",
@@ -200,9 +215,26 @@ def reconstruct_lifecycle(
         len(cols),
         {lab: round(float(q), 4) for lab, q in zip(labels, model.shape)},
     )
+    log.info(
+        "RBF choice (%s, retransform %s), per output: space, transform, q0, smoothing, factor, LOO RMSE in its units:\n%s",
+        settings.choose,
+        settings.retransform,
+        "\n".join(
+            f"  {lab:<18} {sp:<6} {'log10' if lg else 'linear':<6} {q:.4g} {lam:.3g} {c:.4f} {r:.4g}"
+            for lab, sp, lg, q, lam, c, r in zip(
+                labels,
+                model.input_space,
+                model.log_output,
+                model.shape,
+                model.smoothing,
+                model.log_factor,
+                model.loo_rmse_units,
+            )
+        ),
+    )
 
     hp = _points(hindcast, names.TIME)
-    pred = rbf.predict_rbf(model, hp, chunk_rows=settings.chunk_rows)
+    pred = predict_outputs(model, hp, chunk_rows=settings.chunk_rows)
     out = unstack_outputs(pred, cols, names.TIME, {names.TIME: hindcast[names.TIME].values})
     for v in names.METOCEAN_VARS:
         out[v] = hindcast[v].astype(float)
@@ -219,6 +251,7 @@ def reconstruct_lifecycle(
     if valid.any():
         out = _validation_vars(out, model, x[valid], y[valid], common[valid])
         if compare_transforms and is_dmg.any():
+            per_output = settings.choose == "per_output"
             alt = fit_outputs(
                 x[train],
                 y[train][:, is_dmg],
@@ -226,14 +259,16 @@ def reconstruct_lifecycle(
                 settings,
                 lo=lo,
                 span=span,
-                log_damage=not settings.log_damage,
+                log_damage=~model.log_output[is_dmg] if per_output else not settings.log_damage,
+                thrust=thrust,
             )
-            am = validation_metrics(rbf.predict_rbf(alt, x[valid]), y[valid][:, is_dmg])
+            am = validation_metrics(predict_outputs(alt, x[valid]), y[valid][:, is_dmg])
             other = "linear" if settings.log_damage else "log10"
+            other = "each output's other transform" if per_output else f"{other}-interpolated"
             for k in ("r", "rmse", "sum_error"):
                 arr = np.full(len(cols), np.nan)
                 arr[is_dmg] = am[k]
-                text = f"validation {k}, damage {other}-interpolated"
+                text = f"validation {k}, damage {other}"
                 out[f"validation_{k}_other_transform"] = ("output", arr, _a(text))
     n_hours = hindcast.sizes[names.TIME]
     out = _damage_vars(out, n_hours, fatigue.fatigue_settings(fatigue_cfg))
@@ -247,6 +282,8 @@ def reconstruct_lifecycle(
             "n_validate": int(valid.sum()),
             "rbf_shape_mode": settings.shape_mode,
             "rbf_log_damage": int(settings.log_damage),
+            "rbf_choose": settings.choose,
+            "rbf_retransform": settings.retransform,
             "mooring_system": str(sims.attrs.get("mooring_system", "")),
         }
     )

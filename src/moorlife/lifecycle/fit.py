@@ -1,19 +1,42 @@
-"""The RBF of every output column (:func:`fit_outputs`) and its validation metrics."""
+"""The RBF of every output column (:func:`fit_outputs`, :func:`predict_outputs`) and its validation metrics.
+
+Two ways to choose each output's interpolant (``lifecycle.rbf.choose``):
+
+``global`` (the default, the paper's method)
+    Every output in the paper's normalised 5-D space; the damage interpolated as ``log10``
+    when ``log_damage``; ``q0`` (and the smoothing) per output by Rippa's leave-one-out error
+    in the interpolated (transformed) values.
+``per_output``
+    Every output takes, among the candidate input spaces (``lifecycle.rbf.spaces``: the paper
+    space, or with the rotor thrust ``T(W)`` as a sixth coordinate, :mod:`moorlife.lifecycle.spaces`),
+    the candidate transforms (``lifecycle.rbf.transforms``; ``lifecycle.rbf.damage_transforms``
+    for the damage), the ``q0`` candidates and the smoothing candidates, the one with the
+    smallest leave-one-out RMS error in its own units (:func:`moorlife.rbf.choose_per_output`),
+    from the training states alone. The leave-one-out errors are those of the training states,
+    which maximum dissimilarity puts on the boundary of the sea-state space: they weight the
+    extremes more than the hindcast hours do.
+
+In both, ``lifecycle.rbf.retransform`` sets the back-transform correction of the ``log10``
+outputs (:mod:`moorlife.rbf.transform`). The result is a :class:`Reconstruction`: one
+:class:`moorlife.rbf.RBFModel` per input space in use.
+"""
 
 from __future__ import annotations
 
 import logging
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
 
-from moorlife import rbf
+from moorlife import names, rbf
 from moorlife.lifecycle.outputs import _label
 from moorlife.lifecycle.settings import RBFSettings
-from moorlife.space import direction_mask
+from moorlife.lifecycle.spaces import ThrustCurve, space_inputs
+from moorlife.space import Space, direction_mask, embed, fit_space
 
-__all__ = ["validation_metrics", "fit_outputs"]
+__all__ = ["Reconstruction", "validation_metrics", "fit_outputs", "predict_outputs"]
 
 log = logging.getLogger("moorlife.lifecycle")
 
@@ -55,6 +78,54 @@ def validation_metrics(predicted: npt.ArrayLike, simulated: npt.ArrayLike) -> di
     }
 
 
+@dataclass(frozen=True)
+class Reconstruction:
+    """The fitted RBF of every output column: one model per input space in use.
+
+    Attributes
+    ----------
+    models : tuple of moorlife.rbf.RBFModel
+        One per input space in use.
+    columns : tuple of numpy.ndarray of int
+        The output columns of each model.
+    spaces : tuple of str
+        The input space of each model (``names.RBF_SPACES``).
+    thrust : ThrustCurve or None
+        The thrust curve of the ``"thrust"`` space.
+    space : moorlife.space.Space
+        The paper's 5-D normalisation, and ``centres`` the training states in it: the distances of
+        the error indicator and of the adaptive suggestions (:mod:`moorlife.lifecycle.uncertainty`).
+    centres : numpy.ndarray, shape (m, 5)
+    choose : str
+        ``lifecycle.rbf.choose``.
+    input_space : numpy.ndarray of str, shape (n_out,)
+    shape, smoothing, log_factor, loo_rmse_units : numpy.ndarray, shape (n_out,)
+        Per output: ``q0``, ridge, back-transform factor, leave-one-out RMSE in its own units.
+    log_output : numpy.ndarray of bool, shape (n_out,)
+    loo_error : numpy.ndarray, shape (m, n_out)
+        Leave-one-out residuals in the interpolated (transformed) values.
+    """
+
+    models: tuple[rbf.RBFModel, ...]
+    columns: tuple[np.ndarray, ...]
+    spaces: tuple[str, ...]
+    thrust: ThrustCurve | None
+    space: Space
+    centres: np.ndarray
+    choose: str
+    input_space: np.ndarray
+    shape: np.ndarray
+    smoothing: np.ndarray
+    log_factor: np.ndarray
+    loo_rmse_units: np.ndarray
+    log_output: np.ndarray
+    loo_error: np.ndarray
+
+    @property
+    def n_outputs(self) -> int:
+        return int(self.shape.size)
+
+
 def fit_outputs(
     points: np.ndarray,
     values: np.ndarray,
@@ -63,9 +134,10 @@ def fit_outputs(
     *,
     lo: npt.ArrayLike | None = None,
     span: npt.ArrayLike | None = None,
-    log_damage: bool | None = None,
-) -> rbf.RBFModel:
-    """Fit the RBF of every output column with the configured shape rule.
+    log_damage: bool | npt.ArrayLike | None = None,
+    thrust: ThrustCurve | None = None,
+) -> Reconstruction:
+    """Fit the RBF of every output column with the configured choice (module docstring).
 
     Parameters
     ----------
@@ -76,43 +148,231 @@ def fit_outputs(
     settings : RBFSettings
     lo, span : array_like (5,), optional
         Normalisation of the selection (``cases.zarr`` attributes ``norm_lo``/``norm_span``).
-    log_damage : bool, optional
-        Overrides ``settings.log_damage`` (used to compare both transforms).
+    log_damage : bool or array_like of bool, optional
+        Forces the transform of the damage columns (one value, or one per damage column in
+        order), overriding ``settings.log_damage`` and, with ``per_output``, the choice of
+        their transform (used to compare both transforms).
+    thrust : ThrustCurve, optional
+        Required when ``per_output`` has the ``"thrust"`` space among its candidates.
 
     Returns
     -------
-    moorlife.rbf.RBFModel
+    Reconstruction
+
+    Raises
+    ------
+    ValueError
+        On bad values, or the thrust space without a thrust curve.
     """
     is_dmg = np.array([c[0].startswith("damage") for c in cols])
-    use_log = settings.log_damage if log_damage is None else log_damage
-    logs = is_dmg & bool(use_log)
+    forced = None
+    if log_damage is not None:
+        forced = np.broadcast_to(np.asarray(log_damage, dtype=bool), (int(is_dmg.sum()),))
+    if settings.choose == "per_output":
+        return _fit_per_output(points, values, cols, settings, lo, span, is_dmg, forced, thrust)
+    logs = np.zeros(len(cols), dtype=bool)
+    logs[is_dmg] = bool(settings.log_damage) if forced is None else forced
     if logs.any():
         values = values.copy()
         for j in np.flatnonzero(logs):
-            bad = ~(values[:, j] > 0)
-            if bad.any():  # a calm state with no counted cycle: floor at the smallest positive damage
-                pos = values[values[:, j] > 0, j]
-                floor = pos.min() if pos.size else 1e-30
-                log.warning(
-                    "%s: %d non-positive damage value(s) floored at %.3g for the log transform",
-                    _label(cols[j]),
-                    int(bad.sum()),
-                    floor,
-                )
-                values[bad, j] = floor
+            values[:, j] = _floored(values[:, j], cols[j])
     mask = direction_mask()
-    common = dict(is_direction=mask, log_output=logs, smoothing=settings.smoothing, lo=lo, span=span)
+    common = dict(
+        is_direction=mask,
+        log_output=logs,
+        smoothing=settings.smoothing,
+        lo=lo,
+        span=span,
+        retransform=settings.retransform,
+    )
     if settings.shape_mode == "fixed":
-        q = np.array(
-            [
-                settings.fixed_damage
-                if c[0].startswith("damage")
-                else settings.fixed_tension
-                if c[0].startswith("tension")
-                else settings.fixed_other
-                for c in cols
-            ]
+        model = rbf.fit_rbf(points, values, shape=_fixed_shapes(cols, settings), **common)
+    else:
+        grid = rbf.shape_grid(settings.grid_min, settings.grid_max, settings.grid_n)
+        model = rbf.fit_rbf(points, values, shapes=grid, share_tol=settings.share_tol, **common)
+    rmse = _rmse_units(values, model.loo_error, logs, model.log_factor)
+    paper = [names.RBF_SPACE_PAPER]
+    return _combine([model], [np.arange(len(cols))], paper, thrust, model.space, model.centres, "global", rmse)
+
+
+def predict_outputs(model: Reconstruction, points: npt.ArrayLike, *, chunk_rows: int = 8192) -> np.ndarray:
+    """Every output of a :class:`Reconstruction` at sea states ``points`` (n, 5).
+
+    Parameters
+    ----------
+    model : Reconstruction
+    points : array_like, shape (n, 5)
+        ``names.METOCEAN_VARS`` order, physical units.
+    chunk_rows : int
+        Rows per prediction block (memory only).
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, n_out)
+        Back-transformed (with the correction) for ``log10`` outputs.
+    """
+    if len(model.models) == 1 and model.spaces[0] == names.RBF_SPACE_PAPER:
+        return rbf.predict_rbf(model.models[0], points, chunk_rows=chunk_rows)
+    x = np.asarray(points, dtype=float)
+    out = np.empty((x.shape[0], model.n_outputs))
+    for m, cols, name in zip(model.models, model.columns, model.spaces):
+        out[:, cols] = rbf.predict_rbf(m, space_inputs(name, x, None, None, model.thrust)[0], chunk_rows=chunk_rows)
+    return out
+
+
+def _fixed_shapes(cols: Sequence[tuple[str, str | None]], settings: RBFSettings) -> np.ndarray:
+    """The fixed ``q0`` of every column (``lifecycle.rbf.fixed``)."""
+    return np.array(
+        [
+            settings.fixed_damage
+            if c[0].startswith("damage")
+            else settings.fixed_tension
+            if c[0].startswith("tension")
+            else settings.fixed_other
+            for c in cols
+        ]
+    )
+
+
+def _floored(column: np.ndarray, col: tuple[str, str | None] | None = None) -> np.ndarray:
+    """A damage column for the log transform: non-positive values floored at the smallest positive one.
+
+    Logged when ``col`` is given (the transform chosen, not a candidate).
+    """
+    bad = ~(column > 0)
+    if not bad.any():
+        return column
+    # a calm state with no counted cycle: floor at the smallest positive damage
+    pos = column[column > 0]
+    floor = pos.min() if pos.size else 1e-30
+    if col is not None:
+        log.warning(
+            "%s: %d non-positive damage value(s) floored at %.3g for the log transform",
+            _label(col),
+            int(bad.sum()),
+            floor,
         )
-        return rbf.fit_rbf(points, values, shape=q, **common)
-    grid = rbf.shape_grid(settings.grid_min, settings.grid_max, settings.grid_n)
-    return rbf.fit_rbf(points, values, shapes=grid, share_tol=settings.share_tol, **common)
+    out = column.copy()
+    out[bad] = floor
+    return out
+
+
+def _rmse_units(values: np.ndarray, loo: np.ndarray, logs: np.ndarray, factor: np.ndarray) -> np.ndarray:
+    """Leave-one-out RMSE of every column in its own units (log columns back-transformed)."""
+    e = loo.copy()
+    if logs.any():
+        ly = np.log10(values[:, logs])
+        e[:, logs] = rbf.loo_error_in_units(values[:, logs], ly, loo[:, logs], factor[logs])
+    return np.sqrt(np.mean(e * e, axis=0))
+
+
+def _combine(
+    models: Sequence[rbf.RBFModel],
+    columns: Sequence[np.ndarray],
+    spaces: Sequence[str],
+    thrust: ThrustCurve | None,
+    space: Space,
+    centres: np.ndarray,
+    choose: str,
+    rmse_units: np.ndarray,
+) -> Reconstruction:
+    """The :class:`Reconstruction` of per-space models, with the per-output records assembled."""
+    n_out = int(sum(c.size for c in columns))
+    m = centres.shape[0]
+    per = {k: np.empty(n_out) for k in ("shape", "smoothing", "log_factor")}
+    logs = np.zeros(n_out, dtype=bool)
+    loo = np.empty((m, n_out))
+    where = np.empty(n_out, dtype=object)
+    for model, cols, name in zip(models, columns, spaces):
+        per["shape"][cols] = model.shape
+        per["smoothing"][cols] = model.smoothing
+        per["log_factor"][cols] = model.log_factor
+        logs[cols] = model.log_output
+        loo[:, cols] = model.loo_error
+        where[cols] = name
+    return Reconstruction(
+        models=tuple(models),
+        columns=tuple(np.asarray(c, dtype=np.int64) for c in columns),
+        spaces=tuple(spaces),
+        thrust=thrust,
+        space=space,
+        centres=centres,
+        choose=choose,
+        input_space=where.astype(str),
+        shape=per["shape"],
+        smoothing=per["smoothing"],
+        log_factor=per["log_factor"],
+        loo_rmse_units=np.asarray(rmse_units, dtype=float),
+        log_output=logs,
+        loo_error=loo,
+    )
+
+
+def _fit_per_output(
+    points: np.ndarray,
+    values: np.ndarray,
+    cols: Sequence[tuple[str, str | None]],
+    settings: RBFSettings,
+    lo: npt.ArrayLike | None,
+    span: npt.ArrayLike | None,
+    is_dmg: np.ndarray,
+    forced: np.ndarray | None,
+    thrust: ThrustCurve | None,
+) -> Reconstruction:
+    """``choose: per_output``: the leave-one-out choice per output, then one fit per space in use."""
+    y = np.asarray(values, dtype=float)
+    # log10 candidates: every positive output, and the damage (zeros floored, as with log_damage)
+    cands = [settings.damage_transforms if d else settings.transforms for d in is_dmg]
+    log_ok = (np.all(y > 0, axis=0) | is_dmg) & np.array(["log10" in c for c in cands])
+    lin_ok = np.array(["linear" in c for c in cands]) | ~log_ok
+    if forced is not None:
+        log_ok[is_dmg] = forced
+        lin_ok[is_dmg] = ~forced
+    y_log = y.copy()
+    for j in np.flatnonzero(log_ok & is_dmg):
+        y_log[:, j] = _floored(y[:, j])
+    ly = np.full_like(y, np.nan)
+    ly[:, log_ok] = np.log10(y_log[:, log_ok])
+    inputs = [space_inputs(sp, points, lo, span, thrust) for sp in settings.spaces]
+    geometry = [rbf.centre_geometry(x, mask, lo=lo_s, span=span_s) for x, mask, lo_s, span_s in inputs]
+    if settings.shape_mode == "fixed":
+        shapes = _fixed_shapes(cols, settings)[:, None]
+    else:
+        shapes = rbf.shape_grid(settings.grid_min, settings.grid_max, settings.grid_n)
+    choice = rbf.choose_per_output(
+        geometry,
+        y,
+        shapes=shapes,
+        smoothings=settings.smoothing,
+        log_values=ly,
+        log_candidate=log_ok,
+        linear_candidate=lin_ok,
+        retransform=settings.retransform,
+        share_tol=settings.share_tol,
+    )
+    models, columns, used = [], [], []
+    for si in np.unique(choice.space):
+        c = np.flatnonzero(choice.space == si)
+        x, mask, lo_s, span_s = inputs[int(si)]
+        vals = y[:, c].copy()
+        for k, j in enumerate(c):
+            if choice.log_output[j]:
+                vals[:, k] = _floored(y[:, j], cols[j]) if is_dmg[j] else y[:, j]
+        models.append(
+            rbf.fit_rbf_fixed(
+                x,
+                vals,
+                is_direction=mask,
+                shape=choice.shape[c],
+                smoothing=choice.smoothing[c],
+                log_output=choice.log_output[c],
+                lo=lo_s,
+                span=span_s,
+                retransform=settings.retransform,
+            )
+        )
+        columns.append(c)
+        used.append(settings.spaces[int(si)])
+    x5, mask5, lo5, span5 = space_inputs(names.RBF_SPACE_PAPER, points, lo, span)
+    space = fit_space(x5, mask5, lo=lo5, span=span5)
+    return _combine(models, columns, used, thrust, space, embed(x5, space), "per_output", choice.loo_rmse)

@@ -31,6 +31,17 @@ class RBFSettings:
         Ridge candidates on the kernel diagonal; with several, each output takes the one with
         the smallest leave-one-out error, jointly with its shape (``(0.0,)``: exact
         interpolation, the paper's choice).
+    choose : {"global", "per_output"}
+        ``global``: the paper's 5-D space for every output, damage by ``log_damage``;
+        ``per_output``: space, transform, ``q0`` and smoothing per output by the leave-one-out
+        error in the output's units (:func:`moorlife.rbf.choose_per_output`).
+    spaces : tuple of str
+        Candidate input spaces of ``per_output`` (``names.RBF_SPACES``).
+    transforms, damage_transforms : tuple of str
+        Candidate transforms of ``per_output`` (``names.RBF_TRANSFORMS``) of the outputs other
+        than the damage, and of the damage.
+    retransform : {"none", "smearing", "ratio"}
+        Back-transform correction of the ``log10`` outputs (:mod:`moorlife.rbf.transform`).
     chunk_rows : int
     outputs : tuple of str
         Variables of ``simulations.zarr`` to rebuild.
@@ -46,6 +57,11 @@ class RBFSettings:
     share_tol: float
     log_damage: bool
     smoothing: tuple[float, ...]
+    choose: str
+    spaces: tuple[str, ...]
+    transforms: tuple[str, ...]
+    damage_transforms: tuple[str, ...]
+    retransform: str
     chunk_rows: int
     outputs: tuple[str, ...]
 
@@ -75,6 +91,11 @@ class RBFSettings:
             share_tol=float(s["share_tol"]),
             log_damage=bool(s["log_damage"]),
             smoothing=_smoothing(s["smoothing"], source),
+            choose=str(s["choose"]),
+            spaces=tuple(str(v) for v in s["spaces"]),
+            transforms=tuple(str(v) for v in s["transforms"]),
+            damage_transforms=tuple(str(v) for v in s["damage_transforms"]),
+            retransform=str(s["retransform"]),
             chunk_rows=int(s["chunk_rows"]),
             outputs=tuple(s["outputs"]),
         )

@@ -33,15 +33,23 @@ depend on the number of BLAS threads: the workflow's ``lifecycle`` rule pins BLA
 The normalised space, its distance and its :class:`Space` record live in :mod:`moorlife.space`
 (shared with the selection); :func:`normalise` here is :func:`moorlife.space.embed`.
 
+Outputs interpolated as ``log10`` are predicted as ``c 10**f``, with ``c = 1`` or a
+retransformation-bias correction from the leave-one-out residuals (:mod:`moorlife.rbf.transform`).
+:func:`choose_per_output` chooses, per output and from the training states alone, the input
+space, the transform, ``q0`` and ``lambda`` by the leave-one-out error in the output's units;
+:func:`fit_rbf_fixed` fits such a choice.
+
 Modules: :mod:`~moorlife.rbf.kernels` (Gaussian kernel, weighted sums, trend basis),
 :mod:`~moorlife.rbf.system` (the augmented system), :mod:`~moorlife.rbf.loocv` (Rippa's
-leave-one-out choice of shape and ridge), :mod:`~moorlife.rbf.fit` and
-:mod:`~moorlife.rbf.predict`.
+leave-one-out choice of shape and ridge), :mod:`~moorlife.rbf.transform` (back-transform of
+``log10`` outputs), :mod:`~moorlife.rbf.choose` (the per-output choice), :mod:`~moorlife.rbf.fit`
+and :mod:`~moorlife.rbf.predict`.
 """
 
 from __future__ import annotations
 
-from moorlife.rbf.fit import RBFModel, fit_rbf
+from moorlife.rbf.choose import OutputChoice, choose_per_output
+from moorlife.rbf.fit import RBFModel, centre_geometry, fit_rbf, fit_rbf_fixed
 from moorlife.rbf.kernels import gaussian, polynomial_basis
 from moorlife.rbf.loocv import (
     MIN_RCOND,
@@ -56,6 +64,7 @@ from moorlife.rbf.loocv import (
 )
 from moorlife.rbf.predict import nearest_centre, predict_rbf
 from moorlife.rbf.system import augmented_matrix, kernel_block_inverse, solve_weights
+from moorlife.rbf.transform import RETRANSFORMS, loo_error_in_units, retransform_factor
 from moorlife.space import Space, fit_space, squared_distances
 from moorlife.space import embed as normalise
 
@@ -80,6 +89,13 @@ __all__ = [
     "choose_shapes",
     "shape_grid",
     "fit_rbf",
+    "fit_rbf_fixed",
+    "centre_geometry",
+    "RETRANSFORMS",
+    "retransform_factor",
+    "loo_error_in_units",
+    "OutputChoice",
+    "choose_per_output",
     "predict_rbf",
     "nearest_centre",
 ]

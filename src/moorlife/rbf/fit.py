@@ -15,9 +15,10 @@ from moorlife.rbf.system import (
     kernel_block_inverse,
     solve_weights,
 )
+from moorlife.rbf.transform import RETRANSFORMS, retransform_factor
 from moorlife.space import Space, as_points, embed, fit_space, squared_distances
 
-__all__ = ["RBFModel", "fit_rbf"]
+__all__ = ["RBFModel", "fit_rbf", "fit_rbf_fixed", "centre_geometry"]
 
 
 @dataclass(frozen=True)
@@ -43,6 +44,9 @@ class RBFModel:
         (``log10`` units for log outputs).
     smoothing : numpy.ndarray, shape (n_out,)
         Ridge term added to the kernel diagonal per output (0: exact interpolation).
+    log_factor : numpy.ndarray, shape (n_out,)
+        Back-transform factor ``c`` of the log outputs, predicted as ``c 10**f``
+        (:func:`moorlife.rbf.retransform_factor`); 1.0 for linear outputs and without correction.
     """
 
     space: Space
@@ -53,6 +57,7 @@ class RBFModel:
     log_output: np.ndarray
     loo_error: np.ndarray
     smoothing: np.ndarray
+    log_factor: np.ndarray
 
     @property
     def n_outputs(self) -> int:
@@ -71,6 +76,7 @@ def fit_rbf(
     share_tol: float = 0.0,
     lo: npt.ArrayLike | None = None,
     span: npt.ArrayLike | None = None,
+    retransform: str = "none",
 ) -> RBFModel:
     """Fit a multi-output Gaussian RBF with a first-degree polynomial.
 
@@ -96,6 +102,9 @@ def fit_rbf(
     lo, span : array_like (d,), optional
         Normalisation offset and range of the scalars (e.g. the hindcast's, see
         :func:`fit_space`); default from the points.
+    retransform : {"none", "smearing", "ratio"}
+        Back-transform correction of the log outputs (:mod:`moorlife.rbf.transform`), from the
+        leave-one-out residuals of the fit; "none" predicts ``10**f``.
 
     Returns
     -------
@@ -107,6 +116,110 @@ def fit_rbf(
         On non-finite values, non-positive values of a log output (naming output and row),
         or mismatched shapes.
     """
+    space, z, d2, basis, y, logs = _prepare(points, values, is_direction, log_output, lo, span)
+    n_out = y.shape[1]
+    lam_grid = np.atleast_1d(np.asarray(smoothing, dtype=float))
+    if lam_grid.size == 0 or np.any(~(lam_grid >= 0)):
+        raise ValueError(f"smoothing must be non-negative, got {smoothing!r}")
+    if shape is None:
+        grid = shape_grid(0.02, 1.0, 20) if shapes is None else np.asarray(shapes, dtype=float)
+        q, lam = choose_shapes_and_smoothing(d2, basis, y, grid, lam_grid, share_tol)
+    else:
+        q = np.broadcast_to(np.asarray(shape, dtype=float), (n_out,)).copy()
+        if np.any(~(q > 0)):
+            raise ValueError(f"shape parameters must be positive, got {q}")
+        lam = np.full(n_out, lam_grid[0])
+        if lam_grid.size > 1:  # fixed shapes, smoothing by leave-one-out per shape
+            for qi in np.unique(q):
+                cols = np.flatnonzero(q == qi)
+                lam[cols] = choose_shapes_and_smoothing(d2, basis, y[:, cols], [qi], lam_grid, share_tol)[1]
+    return _assemble(space, z, d2, basis, y, q, lam, logs, retransform)
+
+
+def fit_rbf_fixed(
+    points: npt.ArrayLike,
+    values: npt.ArrayLike,
+    *,
+    is_direction: npt.ArrayLike,
+    shape: float | npt.ArrayLike,
+    smoothing: float | npt.ArrayLike = 0.0,
+    log_output: bool | npt.ArrayLike = False,
+    lo: npt.ArrayLike | None = None,
+    span: npt.ArrayLike | None = None,
+    retransform: str = "none",
+) -> RBFModel:
+    """Fit with a given shape parameter and smoothing per output (no search).
+
+    The fit of a choice made elsewhere, e.g. by :func:`moorlife.rbf.choose_per_output`.
+
+    Parameters
+    ----------
+    points, values, is_direction, log_output, lo, span, retransform
+        As :func:`fit_rbf`.
+    shape : float or array_like (n_out,)
+        ``q0`` per output (positive).
+    smoothing : float or array_like (n_out,)
+        Ridge term per output (non-negative).
+
+    Returns
+    -------
+    RBFModel
+
+    Raises
+    ------
+    ValueError
+        As :func:`fit_rbf`, and on a non-positive shape or a negative smoothing.
+    """
+    space, z, d2, basis, y, logs = _prepare(points, values, is_direction, log_output, lo, span)
+    n_out = y.shape[1]
+    q = np.broadcast_to(np.asarray(shape, dtype=float), (n_out,)).copy()
+    lam = np.broadcast_to(np.asarray(smoothing, dtype=float), (n_out,)).copy()
+    if np.any(~(q > 0)):
+        raise ValueError(f"shape parameters must be positive, got {q}")
+    if np.any(~(lam >= 0)):
+        raise ValueError(f"smoothing must be non-negative, got {lam}")
+    return _assemble(space, z, d2, basis, y, q, lam, logs, retransform)
+
+
+def centre_geometry(
+    points: npt.ArrayLike,
+    is_direction: npt.ArrayLike,
+    *,
+    lo: npt.ArrayLike | None = None,
+    span: npt.ArrayLike | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Squared normalised distances between the training points and their polynomial basis.
+
+    The inputs of :func:`moorlife.rbf.loo_residuals` and :func:`moorlife.rbf.choose_per_output`,
+    computed exactly as :func:`fit_rbf` computes them.
+
+    Parameters
+    ----------
+    points : array_like, shape (m, d)
+    is_direction : array_like of bool, shape (d,)
+    lo, span : array_like (d,), optional
+        As :func:`fit_rbf`.
+
+    Returns
+    -------
+    d2 : numpy.ndarray, shape (m, m)
+    basis : numpy.ndarray, shape (m, p)
+    """
+    x = as_points(points)
+    space = fit_space(x, is_direction, lo=lo, span=span)
+    z = embed(x, space)
+    return squared_distances(z, z, space.is_direction), polynomial_basis(z, space.is_direction)
+
+
+def _prepare(
+    points: npt.ArrayLike,
+    values: npt.ArrayLike,
+    is_direction: npt.ArrayLike,
+    log_output: bool | npt.ArrayLike,
+    lo: npt.ArrayLike | None,
+    span: npt.ArrayLike | None,
+) -> tuple[Space, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Checked, transformed values and the embedded centres: ``space, z, d2, basis, y, logs``."""
     x = as_points(points)
     y = np.asarray(values, dtype=float)
     if y.ndim == 1:
@@ -132,21 +245,24 @@ def fit_rbf(
     basis = polynomial_basis(z, space.is_direction)
     if z.shape[0] < basis.shape[1] + 1:
         raise ValueError(f"{z.shape[0]} training points are too few for {basis.shape[1]} polynomial terms")
-    lam_grid = np.atleast_1d(np.asarray(smoothing, dtype=float))
-    if lam_grid.size == 0 or np.any(~(lam_grid >= 0)):
-        raise ValueError(f"smoothing must be non-negative, got {smoothing!r}")
-    if shape is None:
-        grid = shape_grid(0.02, 1.0, 20) if shapes is None else np.asarray(shapes, dtype=float)
-        q, lam = choose_shapes_and_smoothing(d2, basis, y, grid, lam_grid, share_tol)
-    else:
-        q = np.broadcast_to(np.asarray(shape, dtype=float), (n_out,)).copy()
-        if np.any(~(q > 0)):
-            raise ValueError(f"shape parameters must be positive, got {q}")
-        lam = np.full(n_out, lam_grid[0])
-        if lam_grid.size > 1:  # fixed shapes, smoothing by leave-one-out per shape
-            for qi in np.unique(q):
-                cols = np.flatnonzero(q == qi)
-                lam[cols] = choose_shapes_and_smoothing(d2, basis, y[:, cols], [qi], lam_grid, share_tol)[1]
+    return space, z, d2, basis, y, logs
+
+
+def _assemble(
+    space: Space,
+    z: np.ndarray,
+    d2: np.ndarray,
+    basis: np.ndarray,
+    y: np.ndarray,
+    q: np.ndarray,
+    lam: np.ndarray,
+    logs: np.ndarray,
+    retransform: str,
+) -> RBFModel:
+    """Weights, polynomial and leave-one-out residuals at the chosen ``(q0, lambda)`` per output."""
+    if retransform not in RETRANSFORMS:
+        raise ValueError(f"unknown back-transform correction {retransform!r}; expected one of {list(RETRANSFORMS)}")
+    n_out = y.shape[1]
     m = z.shape[0]
     weights = np.empty_like(y)
     poly = np.empty((basis.shape[1], n_out))
@@ -161,6 +277,9 @@ def fit_rbf(
         if h is None:  # not numerically positive definite: fall back on the full inverse
             h, _ = _inverse(mat)
         loo[:, cols] = rippa_errors(h, y[:, cols])
+    factor = np.ones(n_out)
+    if logs.any():
+        factor[logs] = retransform_factor(y[:, logs], loo[:, logs], retransform)
     return RBFModel(
         space=space,
         centres=z,
@@ -170,4 +289,5 @@ def fit_rbf(
         log_output=logs,
         loo_error=loo,
         smoothing=lam,
+        log_factor=factor,
     )

@@ -31,7 +31,7 @@ def predict_rbf(model: RBFModel, points: npt.ArrayLike, *, chunk_rows: int = 819
     Returns
     -------
     numpy.ndarray, shape (n, n_out)
-        Back-transformed (``10**``) for log outputs.
+        Back-transformed for log outputs: ``c 10**f`` with ``c`` the model's ``log_factor``.
     """
     z = embed(points, model.space)
     n = z.shape[0]
@@ -56,6 +56,9 @@ def predict_rbf(model: RBFModel, points: npt.ArrayLike, *, chunk_rows: int = 819
             _weighted_sum(k[:b], w_t[q], cols, out[s:e])
     if model.log_output.any():
         out[:, model.log_output] = 10.0 ** out[:, model.log_output]
+        corrected = model.log_output & (model.log_factor != 1.0)
+        if corrected.any():  # the back-transform correction c 10**f (moorlife.rbf.transform)
+            out[:, corrected] *= model.log_factor[corrected]
     return out
 
 

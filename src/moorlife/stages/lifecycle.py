@@ -13,6 +13,7 @@ import xarray as xr
 from moorlife import lifecycle as lc_mod
 from moorlife import names
 from moorlife.io import open_zarr, save_figure, write_zarr
+from moorlife.io.platform import read_platform_config
 from moorlife.settings import fill_section
 from moorlife.stages import logged
 
@@ -29,6 +30,7 @@ def run(
     store: PathLike,
     lifecycle: Mapping[str, Any],
     fatigue: Mapping[str, Any],
+    platform_cfg: PathLike | None = None,
     chunk_rows: int | None = None,
     threads: int | None = None,
     log: PathLike | None = None,
@@ -43,6 +45,9 @@ def run(
         The output store.
     lifecycle, fatigue : mapping
         The config sections of the same names.
+    platform_cfg : path-like, optional
+        ``config/platform.yaml``: the thrust curve of the ``thrust`` input space, read only
+        when ``lifecycle.rbf.choose`` is ``per_output`` with that space among the candidates.
     chunk_rows : int, optional
         Hindcast hours per RBF prediction block (``lifecycle.rbf.chunk_rows``, read from the
         config by the adapter: memory only, never the numbers). Default: the section's value.
@@ -61,6 +66,11 @@ def run(
         if chunk_rows is not None:
             rbf_cfg["chunk_rows"] = int(chunk_rows)
         settings = lc_mod.rbf_settings(rbf_cfg, source="config.yaml")
+        thrust = None
+        if settings.choose == "per_output" and names.RBF_SPACE_THRUST in settings.spaces:
+            if platform_cfg is None:
+                raise ValueError("lifecycle.rbf.spaces has 'thrust': the lifecycle stage needs platform_cfg")
+            thrust = lc_mod.thrust_curve(read_platform_config(platform_cfg), str(platform_cfg))
         ds = lc_mod.reconstruct_lifecycle(
             open_zarr(hindcast),
             open_zarr(cases),
@@ -68,6 +78,7 @@ def run(
             settings=settings,
             fatigue_cfg=fatigue,
             n_suggest=int(fill_section("lifecycle.adaptive", lifecycle.get("adaptive"))["n_suggest"]),
+            thrust=thrust,
         )
         for k in ("validation_r", "validation_rmse"):
             if k in ds:

@@ -1,0 +1,157 @@
+"""The candidate input spaces of the reconstruction: the paper's 5-D space, and the same with the thrust.
+
+``"paper"``
+    The normalised 5-D sea-state space of the selection (:mod:`moorlife.space`): wind speed
+    and direction, Hs, Tp, wave direction.
+``"thrust"``
+    The same plus a sixth scalar coordinate, the steady rotor thrust ``T(W)`` at the hour's
+    hub wind speed (:func:`moorlife.turbine.thrust` with the Ct table, air density, rotor and
+    cut-in/cut-out ramps of ``platform.yaml``, as the simulator uses them), normalised like
+    the other scalars: ``(T - lo_T) / span_T`` with ``lo_T`` and ``span_T`` the minimum and
+    range of ``T`` over the wind speeds of the space's own wind range
+    (``[lo_W, lo_W + span_W]``, the hindcast's range when the selection's normalisation is
+    used). The damage of the lines away from the waves peaks in a narrow band of wind speed
+    just above rated, narrower than any useful shape parameter in ``W``; in ``T(W)`` that band
+    is the maximum of one coordinate.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from moorlife import names, turbine
+from moorlife.space import direction_mask
+
+__all__ = ["ThrustCurve", "thrust_curve", "thrust_at", "space_inputs"]
+
+#: Wind-speed step (m/s) of the scan that finds the thrust range of a wind range.
+_SCAN_STEP = 0.01
+
+
+@dataclass(frozen=True)
+class ThrustCurve:
+    """The steady rotor thrust of the turbine as a function of the hub wind speed.
+
+    Attributes
+    ----------
+    wind_speed, ct : numpy.ndarray, shape (n,)
+        The thrust-coefficient table.
+    rho_air, rotor_area : float
+        kg/m3, m2.
+    cut_in, cut_out, shutdown_ramp, startup_ramp : float
+        m/s (:func:`moorlife.turbine.thrust`).
+    """
+
+    wind_speed: np.ndarray
+    ct: np.ndarray
+    rho_air: float
+    rotor_area: float
+    cut_in: float
+    cut_out: float
+    shutdown_ramp: float
+    startup_ramp: float
+
+
+def thrust_curve(platform_cfg: Mapping, source: str = "platform.yaml") -> ThrustCurve:
+    """The :class:`ThrustCurve` of ``platform.yaml`` (its ``turbine`` and ``environment`` blocks).
+
+    The same values as the simulator's platform model (:func:`moorlife.hydro.load_platform_model`).
+
+    Raises
+    ------
+    ValueError
+        On an invalid Ct table (naming the file and field).
+    """
+    tcfg = platform_cfg["turbine"]
+    ws, ct = turbine.ct_table(tcfg, source)
+    env = platform_cfg.get("environment", {}) or {}
+    radius = float(tcfg["rotor_radius"])
+    return ThrustCurve(
+        wind_speed=ws,
+        ct=ct,
+        rho_air=float(env.get("rho_air", 1.225)),
+        rotor_area=float(np.pi * radius**2),
+        cut_in=float(tcfg["cut_in"]),
+        cut_out=float(tcfg["cut_out"]),
+        shutdown_ramp=float(tcfg.get("shutdown_ramp", 1.0)),
+        startup_ramp=float(tcfg.get("startup_ramp", 1.0)),
+    )
+
+
+def thrust_at(curve: ThrustCurve, wind_speed: npt.ArrayLike) -> np.ndarray:
+    """Steady thrust ``T(W)`` (N) at hub wind speeds ``W`` (m/s)."""
+    return turbine.thrust(
+        wind_speed,
+        curve.wind_speed,
+        curve.ct,
+        rho_air=curve.rho_air,
+        rotor_area=curve.rotor_area,
+        cut_in=curve.cut_in,
+        cut_out=curve.cut_out,
+        shutdown_ramp=curve.shutdown_ramp,
+        startup_ramp=curve.startup_ramp,
+    )
+
+
+def _thrust_range(curve: ThrustCurve, w_lo: float, w_hi: float) -> tuple[float, float]:
+    """Minimum and range of ``T(W)`` for ``W`` in ``[w_lo, w_hi]`` (a 0.01 m/s scan plus the table nodes)."""
+    n = max(2, int(np.ceil((w_hi - w_lo) / _SCAN_STEP)) + 1)
+    knots = [curve.wind_speed, [curve.cut_in, curve.cut_out, curve.cut_out + curve.shutdown_ramp]]
+    w = np.concatenate([np.linspace(w_lo, w_hi, n), *knots])
+    t = thrust_at(curve, w[(w >= w_lo) & (w <= w_hi)])
+    lo = float(t.min())
+    span = float(t.max()) - lo
+    return lo, span if span > 0 else 1.0
+
+
+def space_inputs(
+    name: str,
+    points: npt.ArrayLike,
+    lo: npt.ArrayLike | None,
+    span: npt.ArrayLike | None,
+    curve: ThrustCurve | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray | None]:
+    """The inputs of an RBF in the candidate space ``name``.
+
+    Parameters
+    ----------
+    name : {"paper", "thrust"}
+    points : array_like, shape (n, 5)
+        Sea states in ``names.METOCEAN_VARS`` order (physical units).
+    lo, span : array_like (5,) or None
+        The normalisation of the paper space (None: the fit's training points).
+    curve : ThrustCurve, optional
+        Required for ``"thrust"``.
+
+    Returns
+    -------
+    points : numpy.ndarray, shape (n, 5) or (n, 6)
+    is_direction : numpy.ndarray of bool
+    lo, span : numpy.ndarray or None
+        The normalisation extended by the thrust's (None if the 5-D one is None, so that the
+        fit normalises every coordinate by the training range).
+
+    Raises
+    ------
+    ValueError
+        On an unknown space, or ``"thrust"`` without a curve.
+    """
+    x = np.asarray(points, dtype=float)
+    mask = direction_mask()
+    if name == names.RBF_SPACE_PAPER:
+        return x, mask, None if lo is None else np.asarray(lo, float), None if span is None else np.asarray(span, float)
+    if name != names.RBF_SPACE_THRUST:
+        raise ValueError(f"unknown RBF input space {name!r}; expected one of {list(names.RBF_SPACES)}")
+    if curve is None:
+        raise ValueError("the 'thrust' input space needs the turbine's thrust curve (platform.yaml)")
+    iw = names.METOCEAN_VARS.index("wind_speed")
+    x6 = np.column_stack([x, thrust_at(curve, x[:, iw])])
+    if lo is None or span is None:
+        return x6, np.r_[mask, False], None, None
+    lo5, span5 = np.asarray(lo, float), np.asarray(span, float)
+    t_lo, t_span = _thrust_range(curve, float(lo5[iw]), float(lo5[iw] + span5[iw]))
+    return x6, np.r_[mask, False], np.r_[lo5, t_lo], np.r_[span5, t_span]
