@@ -6,14 +6,12 @@ flags (reassociation, contraction into FMA) the two then round differently (meas
 1e-13 relative on the simulated statistics). The kernels are compiled IEEE-strict, so the cache
 history cannot change a bit.
 
-The behavioural test runs one coupled simulation with dynamic lines (the platform kernels of
-``moorlife.simulate.kernel``, the lumped-mass and line-force kernels of ``moorlife.mooring``,
-rainflow and statistics) in two fresh processes, with a cold and then a warm cache. It fails
-with the fast-math flags restored in those kernels (checked by hand; quasi-static lines, which
-share the platform kernels, only added compile time). The static test keeps every kernel,
-quasi-static ones included, free of fast-math flags, so a flag cannot come back unnoticed. (A
-third history, the platform kernels compiled afresh against cached mooring kernels, was checked
-by hand to agree too.)
+The behavioural test runs one coupled simulation (dynamic and quasi-static lines) in two fresh
+processes, with a cold and then a warm cache. With the fast-math flags restored, the dynamic
+lines give another digest cold and warm, the quasi-static ones alone do not (checked by hand):
+a flag on a kernel that does not change these digests would pass it, so the static test keeps
+every kernel free of fast-math flags. (A third history, the platform kernels compiled afresh
+against cached mooring kernels, was checked by hand to agree too.)
 """
 
 from __future__ import annotations
@@ -40,14 +38,15 @@ sys.path.insert(0, {tests!r})
 import test_simulate as T
 from moorlife import simulate as sim
 h = hashlib.sha256()
-m = T.moored("MS3", "dynamic")
-out = sim.simulate_batch(T.sea(2), case_ids=np.array([3, 4]), mooring_system="MS3", seed=5, model_inputs=m,
-                         sim_cfg={{**T.SIM, "duration": 60.0, "transient": 10.0}}, fatigue_cfg={{}},
-                         stats_cfg={{"block": 10.0, "method": "lmoments"}})
-for k in sorted(out):
-    v = np.asarray(out[k])
-    if v.dtype.kind in "fiu":
-        h.update(k.encode()); h.update(np.ascontiguousarray(v).tobytes())
+for kind in ("dynamic", "quasistatic"):
+    m = T.moored("MS3", kind)
+    out = sim.simulate_batch(T.sea(2), case_ids=np.array([3, 4]), mooring_system="MS3", seed=5, model_inputs=m,
+                             sim_cfg={{**T.SIM, "duration": 60.0, "transient": 10.0}}, fatigue_cfg={{}},
+                             stats_cfg={{"block": 10.0, "method": "lmoments"}})
+    for k in sorted(out):
+        v = np.asarray(out[k])
+        if v.dtype.kind in "fiu":
+            h.update(k.encode()); h.update(np.ascontiguousarray(v).tobytes())
 print(h.hexdigest())
 """
 
