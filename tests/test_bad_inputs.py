@@ -1,13 +1,23 @@
-"""Bad input through the workflow's own adapters: a clear message, and no declared output.
+"""Bad input: the exit code, a clear message naming the file or key and the value, no output.
 
-Every class of bad hindcast (issue 3), a corrupted or partial upstream store, and one real
-Snakemake run. The loaders' messages are tested in detail in tests/test_hindcast_io.py; here
-the point is what a user of the workflow sees and what is left in results/.
+Every class of bad hindcast (issue 3), bad config keys, tables and platform files (issue 20), a
+corrupted or partial upstream store, and real Snakemake runs. The loaders' messages are tested
+in detail in tests/test_hindcast_io.py; here the point is what a user of the workflow sees and
+what is left in results/.
+
+The exit code: a case that fails at parse time runs the pre-flight command
+(``python -m moorlife.stages.check``, :func:`moorlife.stages.check.check_study`, which
+``workflow/rules/common.smk`` calls when Snakemake parses the workflow) as a real child process
+and asserts its exit status, its stderr and that nothing was written. A bad hindcast file fails
+in the ``metocean`` rule: the command's ``--inputs`` loads it with the rule's own loader (exit
+status, stderr), and the rule's adapter runs in-process on the same file (no declared output,
+the rule log holds the message). A few cases run ``snakemake`` itself.
 """
 
 from __future__ import annotations
 
 import importlib.util
+import multiprocessing
 import os
 import re
 import shutil
@@ -20,13 +30,16 @@ import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
+import yaml
 from snakemake.iocontainers import Namedlist
 from test_hindcast_io import NORA3_HEADER, nora3_frame, write_csv
 
 from moorlife import io as mio
-from moorlife.config import ConfigError, check_against_table, deep_merge, validate_config
-from moorlife.io import read_mooring_systems, read_study_config, read_yaml
+from moorlife.config import deep_merge
+from moorlife.io import read_study_config, read_yaml
 from moorlife.metocean import HindcastError
+from moorlife.parallel import SCHEDULER_ENV
+from moorlife.stages import check as preflight
 
 ROOT = Path(__file__).resolve().parents[1]
 SCRIPTS = ROOT / "workflow" / "scripts"
@@ -41,13 +54,7 @@ def adapter(name: str):
 
 def hindcast_params(path: Path) -> dict:
     cfg = read_study_config(ROOT / "config/config.yaml", schema=ROOT / "workflow/schemas/config.schema.yaml")
-    return {
-        **cfg["hindcast"],
-        "source": "file",
-        "path": str(path),
-        "start": "2000-01-01T00:00",
-        "end": "2000-01-02T23:00",
-    }
+    return {**cfg["hindcast"], **HINDCAST_FILE, "path": str(path)}
 
 
 def run_metocean(tmp_path: Path, csv: Path):
@@ -68,6 +75,77 @@ def _set(col, value, row=7):
         return df
 
     return edit
+
+
+# ----------------------------------------------------------------- the pre-flight command
+def study_dir(work: Path) -> Path:
+    """A working directory holding the study's ``config/`` and ``tests/data/`` (what the command reads)."""
+    shutil.copytree(ROOT / "config", work / "config")
+    shutil.copytree(ROOT / "tests" / "data", work / "tests" / "data")
+    return work
+
+
+def _files(work: Path) -> list[tuple[str, int, int]]:
+    return sorted((str(p.relative_to(work)), p.stat().st_mtime_ns, p.stat().st_size) for p in work.rglob("*"))
+
+
+def _check_child(work: str, argv: list[str], env: dict[str, str], out: str, err: str) -> None:
+    os.chdir(work)
+    os.environ.pop(SCHEDULER_ENV, None)
+    os.environ.update(env)
+    for fd, path in ((1, out), (2, err)):
+        os.dup2(os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600), fd)
+    sys.stdout, sys.stderr = open(1, "w", closefd=False), open(2, "w", closefd=False)
+    sys.exit(preflight.main(argv))
+
+
+def run_check(work: Path, *argv: str, env: dict[str, str] | None = None) -> SimpleNamespace:
+    """``python -m moorlife.stages.check ARGV`` in ``work``, as a child process: exit code and output.
+
+    The child is forked from this process, where moorlife is imported already (a fork costs
+    milliseconds, a fresh interpreter with these imports more than a second), and exits with the
+    status of the command's ``main(argv)``, as ``python -m`` does
+    (:func:`test_check_command_runs_as_python_m` runs that too). Also asserts that the command
+    wrote nothing: every file of ``work`` is as it was, and there is no ``results/``.
+    """
+    before = _files(work)
+    out, err = work.parent / f".{work.name}.stdout", work.parent / f".{work.name}.stderr"
+    child = multiprocessing.get_context("fork").Process(
+        target=_check_child, args=(str(work), list(argv), dict(env or {}), str(out), str(err))
+    )
+    child.start()
+    child.join(timeout=120)
+    if child.is_alive():
+        child.kill()
+        child.join()
+        pytest.fail(f"the check {argv} did not finish in 120 s")
+    res = SimpleNamespace(returncode=child.exitcode, stdout=out.read_text(), stderr=err.read_text())
+    assert _files(work) == before and not (work / "results").exists(), "the check must write nothing"
+    return res
+
+
+def assert_refused(res: SimpleNamespace, *texts: str, pattern: str | None = None) -> str:
+    """Exit status 1, the message on stderr holding every text and matching ``pattern``; the message."""
+    assert res.returncode == 1, f"exit code {res.returncode}, stderr: {res.stderr[-3000:]}"
+    assert res.stderr.startswith("moorlife check: refused: "), res.stderr[-3000:]
+    for text in texts:
+        assert text in res.stderr, f"{text!r} not in {res.stderr[-3000:]}"
+    if pattern is not None:
+        assert re.search(pattern, res.stderr, flags=re.S), res.stderr[-3000:]
+    return res.stderr
+
+
+HINDCAST_FILE = {"source": "file", "start": "2000-01-01T00:00", "end": "2000-01-02T23:00"}
+
+
+def check_hindcast(tmp_path: Path, csv: Path, patch: dict | None = None) -> SimpleNamespace:
+    """The command with ``--inputs`` on the study whose hindcast is ``csv`` (the params of run_metocean)."""
+    work = study_dir(tmp_path / "check")
+    hindcast = deep_merge({**HINDCAST_FILE, "path": str(csv)}, patch or {})
+    # 48 hours hold at most 48 states (checked at parse time since issue 20)
+    overlay = {"hindcast": hindcast, "selection": {"n_train": 10, "n_validate": 4}}
+    (work / "hc.yaml").write_text(yaml.safe_dump(overlay))
+    return run_check(work, "--configfile", "hc.yaml", "--inputs")
 
 
 BAD = {
@@ -108,6 +186,7 @@ def test_bad_hindcast_rejected_and_nothing_written(tmp_path, case):
     assert not out.exists(), "no declared output after a bad input"
     assert not out.parent.exists() or list(out.parent.iterdir()) == [], "no temporary store left behind"
     assert msg in Path(smk.log[0]).read_text(), "the rule log holds the error"
+    assert_refused(check_hindcast(tmp_path, csv), msg)
 
 
 @pytest.mark.parametrize("case", ["empty", "header_only"])
@@ -115,9 +194,11 @@ def test_empty_hindcast_files(tmp_path, case):
     csv = tmp_path / f"{case}.csv"
     csv.write_text("" if case == "empty" else NORA3_HEADER + ",".join(nora3_frame().columns) + "\n")
     out, smk = run_metocean(tmp_path, csv)
-    with pytest.raises(ValueError, match=re.escape(str(csv)) + r".*(empty|no data|no rows)"):
+    pattern = re.escape(str(csv)) + r".*(empty|no data|no rows)"
+    with pytest.raises(ValueError, match=pattern) as err:
         adapter("metocean")(smk)
     assert not out.exists()
+    assert_refused(check_hindcast(tmp_path, csv), str(err.value))
 
 
 def test_good_file_through_the_same_adapter(tmp_path):
@@ -127,6 +208,9 @@ def test_good_file_through_the_same_adapter(tmp_path):
     adapter("metocean")(smk)
     ds = mio.open_zarr(out)
     assert ds.sizes["time"] == 48 and ds.attrs["hub_height"] == 90.0
+    res = check_hindcast(tmp_path, csv)
+    assert res.returncode == 0 and res.stderr == "", res.stderr[-3000:]
+    assert res.stdout.endswith(": ok, 6 mooring systems (MS1, MS2, MS3, MS4, MS5, MS6), hindcast file of 48 hours\n")
 
 
 @pytest.mark.parametrize("damage", ["not_flagged", "deleted_array"])
@@ -184,14 +268,13 @@ def test_snakemake_reports_bad_hindcast_and_writes_nothing(tmp_path):
 
 # ============================================================================================
 # Issue 20: more bad input. Every case asserts what the workflow does with it:
-#  * "exit code": the error class that the rule or the parse-time check raises (Snakemake turns
-#    any exception of a script or of the Snakefile into exit code 1; the `snakemake` cases at the
-#    end check that end to end);
+#  * the exit code: 1 from the pre-flight command run as a child process (run_check), which
+#    runs the Snakefile's parse-time check (and, with --inputs, the metocean rule's loader); the
+#    `snakemake` cases check that Snakemake itself exits 1 with the same message;
 #  * that the message names the file or the config key and the offending value;
-#  * that no declared output (and no temporary store) is left.
+#  * that no declared output (and no temporary store) is left: the command writes nothing
+#    (run_check), and the rule's adapter, run on the same bad file, leaves nothing either.
 # ============================================================================================
-
-SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 
 
 def _no_output(out: Path) -> None:
@@ -292,6 +375,7 @@ def test_issue20_bad_hindcast_rejected(tmp_path, case):
     assert re.search(pattern, msg, flags=re.S), msg
     _no_output(out)
     assert msg in Path(smk.log[0]).read_text(), "the rule log holds the error"
+    assert_refused(check_hindcast(tmp_path, csv), msg)
 
 
 @pytest.mark.parametrize(
@@ -318,6 +402,10 @@ def test_issue20_not_a_hindcast(tmp_path, case, content, pattern):
     for secret in ("root", "19000", "daemon", "notes", "HDF"):
         assert secret not in msg.replace(str(csv), ""), f"the message echoes the file's content: {msg}"
     _no_output(out)
+    res = check_hindcast(tmp_path, csv)
+    assert_refused(res, msg)
+    for secret in ("root", "19000", "daemon", "notes", "HDF"):
+        assert secret not in res.stderr.replace(str(csv), ""), f"the command echoes the file's content: {res.stderr}"
 
 
 @pytest.mark.parametrize(
@@ -348,18 +436,13 @@ def test_issue20_bad_hindcast_settings(tmp_path, patch, pattern):
     if "config key" not in msg:
         assert str(csv) in msg, msg
     _no_output(out)
+    # the command refuses a bad date at parse time already (naming the overlay), the rest on loading
+    res = check_hindcast(tmp_path, csv, patch)
+    assert_refused(res, "hc.yaml: " if "config key" in msg else msg, pattern=pattern)
 
 
 # ----------------------------------------------------------------- config, at parse time
-def _base(*overlays):
-    cfg = read_yaml(ROOT / "config" / "config.yaml")
-    for ov in overlays:
-        cfg = deep_merge(cfg, ov)
-    return cfg
-
-
-QUICK = read_yaml(ROOT / "config" / "quick.yaml")
-
+# (a patch over config/quick.yaml, written as the overlay bad.yaml; the pattern of the message)
 BAD_CONFIG = {
     # item 5: a time step that cannot resolve the waves
     "dt_1": (
@@ -443,52 +526,91 @@ BAD_CONFIG = {
         {"hindcast": {"end": "1984-12-31T23:00"}},
         r"'hindcast\.end' = '1984-12-31T23:00' is before 'hindcast\.start' = '1985-01-01T00:00'",
     ),
+    # the schema itself: a value out of range, a misspelt key
+    "n_train_negative": ({"selection": {"n_train": -3}}, r"config key 'selection\.n_train' = -3 is invalid"),
+    "unknown_key": ({"simulation": {"durration": 10}}, r"unknown config key 'simulation\.durration'"),
+    # item 8: `lifecycle.sensitivity.mooring_system: MS9` used to drop the sensitivities silently
+    "sensitivity_system_not_in_table": (
+        {"lifecycle": {"sensitivity": {"mooring_system": "MS9"}}},
+        r"config key 'lifecycle\.sensitivity\.mooring_system' = 'MS9' "
+        r"is not a mooring system of the table config/mooring_systems\.tsv \(MS1, ",
+    ),
+    # a corrosion rate that eats a link within the design life failed only at the end of lifecycle
+    "corrosion_consumes_the_link": (
+        {"fatigue": {"corrosion": {"rate": 5.0}}},
+        r"config keys 'fatigue\.corrosion\.rate' = 5\.0 mm/year over "
+        r"'fatigue\.design_life' = 25\.0 years remove 125 mm, the whole \d+ mm link of MS1",
+    ),
 }
+
+QUICK_SOURCE = "config/config.yaml, config/quick.yaml, bad.yaml: "
 
 
 @pytest.mark.parametrize("case", sorted(BAD_CONFIG))
 def test_issue20_bad_config_refused_before_any_job(tmp_path, case):
+    """The parse-time check as a command: exit code 1, the files, the key and the value; nothing written."""
     patch, pattern = BAD_CONFIG[case]
-    with pytest.raises(ConfigError) as err:
-        validate_config(_base(QUICK, patch), read_yaml(SCHEMA), source="bad.yaml")
-    msg = str(err.value)
-    assert msg.startswith("bad.yaml: "), msg
-    assert re.search(pattern, msg), msg
+    work = study_dir(tmp_path)
+    (work / "bad.yaml").write_text(yaml.safe_dump(patch))
+    assert_refused(run_check(work, "--configfile", "config/quick.yaml", "bad.yaml"), QUICK_SOURCE, pattern=pattern)
 
 
-def test_issue20_default_and_overlay_configs_pass_the_cross_key_checks():
-    """The checks refuse only what is wrong: config.yaml, quick.yaml and tiny.yaml pass."""
-    schema = read_yaml(SCHEMA)
-    tiny = read_yaml(ROOT / "tests" / "data" / "tiny.yaml")
-    for cfg in (_base(), _base(QUICK), _base(QUICK, tiny)):
-        validate_config(cfg, schema)
-
-
-def test_issue20_sensitivity_system_not_in_table():
-    """item 8: `lifecycle.sensitivity.mooring_system: MS9` used to drop the sensitivities silently."""
-    cfg = _base(QUICK, {"lifecycle": {"sensitivity": {"mooring_system": "MS9"}}})
-    ids = list(read_mooring_systems(ROOT / "config" / "mooring_systems.tsv").index)
-    with pytest.raises(
-        ConfigError,
-        match=r"bad\.yaml: config key 'lifecycle\.sensitivity\.mooring_system' = 'MS9' "
-        r"is not a mooring system of the table config/mooring_systems\.tsv \(MS1, ",
+def test_issue20_default_and_overlay_configs_pass_the_checks(tmp_path):
+    """The checks refuse only what is wrong: config.yaml, quick.yaml and tiny.yaml pass (exit code 0)."""
+    work = study_dir(tmp_path)
+    for overlays, systems in (
+        ((), "6 mooring systems (MS1, MS2, MS3, MS4, MS5, MS6)"),
+        (("config/quick.yaml",), "6 mooring systems"),
+        (("config/quick.yaml", "tests/data/tiny.yaml"), "2 mooring systems (MS1, MS3)"),
     ):
-        check_against_table(cfg, ids, "bad.yaml")
-    check_against_table(_base(QUICK), ids, "good.yaml")
+        res = run_check(work, *(["--configfile", *overlays] if overlays else []), "--truth")
+        assert res.returncode == 0 and res.stderr == "", res.stderr[-3000:]
+        assert f": ok, {systems}" in res.stdout and "truth hours" in res.stdout, res.stdout
 
 
-def test_issue20_corrosion_consumes_the_link():
-    """A corrosion rate that eats a link within the design life failed only at the end of lifecycle."""
-    table = read_mooring_systems(ROOT / "config" / "mooring_systems.tsv")
-    d = dict(table["link_diameter_mm"])
-    cfg = validate_config(_base(QUICK, {"fatigue": {"corrosion": {"rate": 5.0}}}), read_yaml(SCHEMA))
-    with pytest.raises(
-        ConfigError,
-        match=r"bad\.yaml: config keys 'fatigue\.corrosion\.rate' = 5\.0 mm/year over "
-        r"'fatigue\.design_life' = 25\.0 years remove 125 mm, the whole \d+ mm link of MS1",
-    ):
-        check_against_table(cfg, list(table.index), "bad.yaml", d)
-    check_against_table(validate_config(_base(QUICK), read_yaml(SCHEMA)), list(table.index), "good.yaml", d)
+def test_check_command_runs_as_python_m(tmp_path):
+    """The real command line, in a fresh interpreter: `python -m moorlife.stages.check`."""
+    work = study_dir(tmp_path)
+    (work / "bad.yaml").write_text("simulation:\n  dt: 1.0\n")
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in sys.path if p)}
+    env.pop(SCHEDULER_ENV, None)
+    cmd = [sys.executable, "-m", "moorlife.stages.check", "--configfile", "config/quick.yaml", "bad.yaml"]
+    res = subprocess.run(cmd, cwd=work, capture_output=True, text=True, timeout=300, env=env)
+    assert_refused(res, QUICK_SOURCE, pattern=r"config key 'simulation\.dt' = 1\.0 s cannot resolve")
+    assert not (work / "results").exists()
+    usage = subprocess.run([*cmd[:3], "--no-such-flag"], cwd=work, capture_output=True, text=True, env=env)
+    assert usage.returncode == 2 and "unrecognized arguments: --no-such-flag" in usage.stderr, usage.stderr
+
+
+TRUTH_CASES = {
+    # the schema refuses this one for every target
+    "stride0": ("truth:\n  stride: 0\n", r"config key 'truth\.stride' = 0 is invalid"),
+    # the others need the hindcast period: checked when a truth target is in the DAG
+    "outside": (
+        'truth:\n  window: {start: "1984-12-01T00:00", end: "1985-01-02T00:00"}\n',
+        r"config key 'truth\.window\.start' = '1984-12-01T00:00' is outside the hindcast",
+    ),
+    "end_before_start": (
+        'truth:\n  window: {start: "1985-03-02T00:00", end: "1985-03-01T00:00"}\n',
+        r"'truth\.window\.end' = '1985-03-01T00:00' is before .* empty",
+    ),
+    "too_many_second_seed": (
+        'truth:\n  window: {start: "1985-03-01T00:00", end: "1985-03-01T09:00"}\n  n_second_seed: 11\n',
+        r"'truth\.n_second_seed' = 11 is larger than the 10 hours",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", sorted(TRUTH_CASES))
+def test_issue20_bad_truth_config(tmp_path, case):
+    """``--truth`` runs the check a truth target runs when the DAG is built; without it (the
+    default targets, which hold no truth rule) the same study passes, as in Snakemake."""
+    text, pattern = TRUTH_CASES[case]
+    work = study_dir(tmp_path)
+    (work / "bad.yaml").write_text(text)
+    argv = ["--configfile", "config/quick.yaml", "tests/data/tiny.yaml", "bad.yaml"]
+    assert_refused(run_check(work, *argv, "--truth"), "tiny.yaml, bad.yaml: ", pattern=pattern)
+    assert run_check(work, *argv).returncode == (1 if case == "stride0" else 0)
 
 
 # ----------------------------------------------------------------- the mooring table
@@ -529,22 +651,19 @@ def _tsv_edit(kind: str) -> str:
     ],
 )
 def test_issue20_bad_mooring_table(tmp_path, kind, pattern):
-    p = tmp_path / f"{kind}.tsv"
-    p.write_text(_tsv_edit(kind))
-    with pytest.raises(ValueError) as err:
-        read_mooring_systems(p)
-    msg = str(err.value)
-    assert msg.startswith(f"{p}: ") and re.search(pattern, msg), msg
+    work = study_dir(tmp_path)
+    (work / f"{kind}.tsv").write_text(_tsv_edit(kind))
+    (work / "bad.yaml").write_text(f"mooring_systems: {kind}.tsv\n")
+    msg = assert_refused(run_check(work, "--configfile", "bad.yaml"), f"refused: {kind}.tsv: ", pattern=pattern)
     for secret in ("root", "19000", "bin:"):
-        assert secret not in msg.replace(str(p), ""), f"the message echoes the file's content: {msg}"
+        assert secret not in msg.replace(f"{kind}.tsv", ""), f"the message echoes the file's content: {msg}"
 
 
 def test_issue20_mooring_table_missing(tmp_path):
-    p = tmp_path / "nope.tsv"
-    with pytest.raises(
-        ValueError, match=re.escape(str(p)) + r": no such mooring-system table \(config key 'mooring_systems'\)"
-    ):
-        read_mooring_systems(p)
+    work = study_dir(tmp_path)
+    (work / "bad.yaml").write_text("mooring_systems: nope.tsv\n")
+    expected = "refused: nope.tsv: no such mooring-system table (config key 'mooring_systems')"
+    assert_refused(run_check(work, "--configfile", "bad.yaml"), expected)
 
 
 # ----------------------------------------------------------------- platform.yaml
@@ -567,34 +686,31 @@ def test_issue20_mooring_table_missing(tmp_path):
     ids=["cm_of_length_2", "inertia_of_length_2", "stiffness_of_length_5", "mass_as_text"],
 )
 def test_issue20_bad_platform_yaml(tmp_path, path, value, pattern):
-    import yaml
-
-    from moorlife.io.platform import read_platform_config
-
-    cfg = read_yaml(ROOT / "config" / "platform.yaml")
+    work = study_dir(tmp_path)
+    cfg = read_yaml(work / "config" / "platform.yaml")
     node = cfg
     for k in path[:-1]:
         node = node[k]
     node[path[-1]] = value
-    p = tmp_path / "platform.yaml"
-    p.write_text(yaml.safe_dump(cfg))
-    with pytest.raises(ValueError) as err:
-        read_platform_config(p)
-    msg = str(err.value)
-    assert msg.startswith(f"{p}: ") and re.search(pattern, msg), msg
+    (work / "platform2.yaml").write_text(yaml.safe_dump(cfg))
+    (work / "bad.yaml").write_text("platform: platform2.yaml\n")
+    assert_refused(run_check(work, "--configfile", "bad.yaml"), "refused: platform2.yaml: ", pattern=pattern)
 
 
 # ----------------------------------------------------------------- the environment
 @pytest.mark.parametrize("address", ["foo:bar", "tcp://127.0.0.1:99999", "http://example.org:8786"])
-def test_issue20_bad_scheduler_address(monkeypatch, address):
+def test_issue20_bad_scheduler_address(tmp_path, monkeypatch, address):
     """`DASK_SCHEDULER_ADDRESS=foo:bar` raised a bare int() error; now it names the variable."""
     from moorlife import parallel
 
-    monkeypatch.setenv(parallel.SCHEDULER_ENV, address)
+    expected = f"environment variable DASK_SCHEDULER_ADDRESS = {address!r} is not a Dask scheduler address"
+    # at parse time (the check of common.smk), before any job
+    assert_refused(run_check(study_dir(tmp_path), env={SCHEDULER_ENV: address}), expected)
+    # and in the simulate stages, which may run under another environment than the parse
+    monkeypatch.setenv(SCHEDULER_ENV, address)
     with pytest.raises(ValueError) as err, parallel.dask_client(1):
         pass
-    msg = str(err.value)
-    assert f"environment variable DASK_SCHEDULER_ADDRESS = {address!r} is not a Dask scheduler address" in msg, msg
+    assert expected in str(err.value), str(err.value)
 
 
 def test_issue20_disk_full_names_the_store(tmp_path, monkeypatch):
@@ -623,16 +739,8 @@ def _copy_workflow(tmp_path: Path) -> None:
 
 
 E2E = {
+    # a config key (the schema's cross-key checks) and a file (platform.yaml, read at parse time)
     "dt_1": ("simulation:\n  dt: 1.0\n", r"bad\.yaml.*config key 'simulation\.dt' = 1\.0 s cannot resolve"),
-    "block_150": (
-        "statistics:\n  block: 150.0\n",
-        r"bad\.yaml.*config key 'statistics\.block' = 150\.0 s: the kept record",
-    ),
-    "sensitivity_MS9": (
-        "lifecycle:\n  sensitivity:\n    mooring_system: MS9\n",
-        r"'lifecycle\.sensitivity\.mooring_system' = 'MS9' is not a mooring system",
-    ),
-    "comma_table": ("mooring_systems: comma.tsv\n", r"comma\.tsv: the mooring-system table is comma-separated"),
     "platform_cm": (
         "platform: platform2.yaml\n",
         r"platform2\.yaml: platform\.cm = \[0\.0, 0\.0\] must be a list of 3",
@@ -643,13 +751,14 @@ E2E = {
 @pytest.mark.workflow
 @pytest.mark.parametrize("case", sorted(E2E))
 def test_issue20_snakemake_refuses_at_parse_time(tmp_path, case):
-    """The real command: exit code non-zero before any job, the key and value in the message."""
+    """Snakemake itself: exit code 1 before any job, with the message of the pre-flight command
+    (the Snakefile calls the same check; the other parse-time cases run the command only)."""
     _copy_workflow(tmp_path)
-    (tmp_path / "comma.tsv").write_text(_tsv_edit("comma"))
     plat = (tmp_path / "config" / "platform.yaml").read_text()
     (tmp_path / "platform2.yaml").write_text(plat.replace("cm: [0.0, 0.0, -13.46]", "cm: [0.0, 0.0]"))
     text, pattern = E2E[case]
     (tmp_path / "bad.yaml").write_text(text)
+    check = assert_refused(run_check(tmp_path, "--configfile", "config/quick.yaml", "bad.yaml"), pattern=pattern)
     snakemake = str(Path(sys.executable).parent / "snakemake")
     res = subprocess.run(
         [snakemake, "--cores", "1", "--configfile", "config/quick.yaml", "bad.yaml"],
@@ -660,6 +769,9 @@ def test_issue20_snakemake_refuses_at_parse_time(tmp_path, case):
     )
     assert res.returncode == 1, res.stderr[-2000:]
     assert re.search(pattern, res.stderr + res.stdout, flags=re.S), res.stderr[-3000:]
+    # the same message, whatever the order in which each names the config files
+    same = check.removeprefix("moorlife check: refused: ").removeprefix(QUICK_SOURCE).strip()
+    assert same in res.stderr + res.stdout, (same, res.stderr[-3000:])
     assert not (tmp_path / "results").exists(), "no job ran, nothing was written"
     assert not (tmp_path / "logs").exists()
 

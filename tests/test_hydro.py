@@ -486,16 +486,23 @@ def test_bem_settings_change_only_with_bem_inputs(platform_cfg, study_config):
         hydro.bem_settings({**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "resolution": "medium"}}, platform_cfg)
 
 
-@pytest.mark.slow
-def test_coarse_bem_reproduces_fixture(platform_cfg, quick_config):
-    """The coarse setting reruns in seconds and reproduces the committed fixture at the shared
-    grid points (0.05 and 2.5 rad/s; headings 0 and 180 deg): determinism + fixture freshness.
-    (Threaded LAPACK in the BEM solve leaves ~1e-4 relative noise on the smallest terms.)"""
-    cfg = quick_config
+@pytest.fixture(scope="module")
+def coarse_two_frequencies(platform_cfg, study_config_factory):
+    """The coarse BEM of config/quick.yaml at 0.05 and 2.5 rad/s, headings 0 and 180 deg, one
+    job: (settings, dataset), shared by the fixture and the worker-count tests."""
+    cfg = study_config_factory(ROOT / "config" / "quick.yaml")
     s = hydro.bem_settings(cfg["hydro"], platform_cfg)
     s["omega"] = {"min": 0.05, "max": 2.5, "n": 2}
     s["heading_step"] = 180.0
-    ds = hydro.bem_from_settings(s, n_jobs=1)
+    return s, hydro.bem_from_settings(s, n_jobs=1)
+
+
+@pytest.mark.slow
+def test_coarse_bem_reproduces_fixture(coarse_two_frequencies):
+    """The coarse setting reruns in seconds and reproduces the committed fixture at the shared
+    grid points (0.05 and 2.5 rad/s; headings 0 and 180 deg): determinism + fixture freshness.
+    (Threaded LAPACK in the BEM solve leaves ~1e-4 relative noise on the smallest terms.)"""
+    _, ds = coarse_two_frequencies
     ref = open_platform_nc(FIXTURE).sel(omega=ds["omega"].values, heading=ds["heading"].values, method="nearest")
     for v in ("added_mass", "damping", "excitation", "drift"):
         np.testing.assert_allclose(
@@ -544,7 +551,7 @@ def test_richardson_recovers_linear_limit():
 
 
 @pytest.mark.slow
-def test_bem_identical_whatever_the_worker_count(platform_cfg, quick_config):
+def test_bem_identical_whatever_the_worker_count(coarse_two_frequencies):
     """1 or 2 jobs give the same coefficients: each frequency is one single-threaded unit in a
     fresh spawned process, and the results are assembled by frequency index.
 
@@ -553,12 +560,9 @@ def test_bem_identical_whatever_the_worker_count(platform_cfg, quick_config):
     of the peak on the diagonal rotational added mass at the first frequency only (cause not
     found; isolated reruns agree). The bound, 1e-3 of each array's peak, is 4x above that and
     still catches what this guards against (frequencies or problems assembled in the wrong
-    order, a worker's result lost): those are O(1) errors."""
-    cfg = quick_config
-    s = hydro.bem_settings(cfg["hydro"], platform_cfg)
-    s["omega"] = {"min": 0.3, "max": 0.9, "n": 2}
-    s["heading_step"] = 180.0
-    one = hydro.bem_from_settings(s, n_jobs=1)
+    order, a worker's result lost): those are O(1) errors. The one-job run is the fixture test's (two frequencies, 0.05
+    and 2.5 rad/s, two headings)."""
+    s, one = coarse_two_frequencies
     two = hydro.bem_from_settings(s, n_jobs=2)
     for v in ("added_mass", "added_mass_inf", "damping", "excitation", "drift"):
         ref = float(np.max(np.abs(one[v].values)))

@@ -3,18 +3,18 @@ import os
 
 from snakemake.exceptions import WorkflowError
 
-from moorlife.config import check_against_table, validate_config
 from moorlife.hydro import bem_settings
-from moorlife.io.platform import read_platform_config
-from moorlife.io import read_mooring_systems, read_yaml
+from moorlife.io import read_yaml
 from moorlife.stages import result_settings
+from moorlife.stages.check import check_study, check_truth
 
 # Validate before any work: unknown keys, wrong types and bad values stop here, naming the key.
+# The same function is the pre-flight command `python -m moorlife.stages.check --configfile ...`.
 _cfg_sources = ", ".join(str(f) for f in workflow.configfiles) or "config"
-config.update(validate_config(config, read_yaml(workflow.source_path("../schemas/config.schema.yaml")), _cfg_sources))
-MOORING = read_mooring_systems(config["mooring_systems"])
+STUDY = check_study(config, read_yaml(workflow.source_path("../schemas/config.schema.yaml")), _cfg_sources)
+config.update(STUDY.config)
+MOORING = STUDY.mooring
 MS_IDS = list(MOORING.index)
-check_against_table(config, MS_IDS, _cfg_sources, dict(MOORING["link_diameter_mm"]))
 
 
 def all_cores():
@@ -62,18 +62,7 @@ def _hydro_inputs(wildcards):
 
 def truth_checked_hindcast(wildcards):
     """The hindcast (input of truth_hours), after checking the truth keys (names key and value)."""
-    from moorlife.truth import check_window
-
-    t, h = config["truth"], config["hindcast"]
-    check_window(
-        t["window"]["start"],
-        t["window"]["end"],
-        t["stride"],
-        t["n_second_seed"],
-        hindcast_start=h["start"],
-        hindcast_end=h["end"],
-        source=_cfg_sources,
-    )
+    check_truth(config, _cfg_sources)
     return "results/metocean/hindcast.zarr"
 
 

@@ -19,6 +19,6 @@ rule hydro:
     resources:
         mem_mb=2000,
     params:
-        bem=bem_settings(config["hydro"], read_platform_config(config["platform"])),
+        bem=bem_settings(config["hydro"], STUDY.platform),
     script:
         "../scripts/hydro.py"

@@ -14,6 +14,8 @@ module             rules (``workflow/rules/<stage>.smk``) -> function
 ``compare``        ``compare`` -> :func:`compare.run`, ``compare_figures`` -> ``figures``
 ``sensitivity``    ``sensitivity_cases`` -> :func:`sensitivity.cases`, ``sensitivity`` ->
                    :func:`sensitivity.run`
+``check``          parse time (``common.smk``) -> :func:`check.check_study`; also the
+                   pre-flight command ``python -m moorlife.stages.check``
 =================  =========================================================================
 
 The layers: the domain modules (every module of :mod:`moorlife` outside ``io`` and
