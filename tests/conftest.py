@@ -1,5 +1,9 @@
 """Shared fixtures: the study configuration, read and validated once per session.
 
+Under pytest-xdist (``make test`` runs ``-n 2 --dist loadgroup``) every test file is one group,
+so a module-scoped fixture is built once, and the files that use the session ``study`` (the tiny
+DAG, built once per worker) are one group together, so the tiny DAG is built once in all.
+
 ``study_config`` is ``config/config.yaml``; ``quick_config`` adds ``config/quick.yaml`` and
 ``tiny_config`` adds ``tests/data/tiny.yaml`` on top (the workflow tests' overlays), each
 validated against the schema with its defaults filled in. Every test gets its own deep copy,
@@ -20,6 +24,18 @@ SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 CONFIG = ROOT / "config" / "config.yaml"
 QUICK = ROOT / "config" / "quick.yaml"
 TINY = ROOT / "tests" / "data" / "tiny.yaml"
+
+
+#: Test files that use the session ``study``: one xdist group, one worker, one build of the DAG.
+STUDY_GROUP = "study"
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Give every test its xdist group: its file, or ``study`` for every file that uses it."""
+    study_files = {item.path for item in items if "study" in getattr(item, "fixturenames", ())}
+    for item in items:
+        group = STUDY_GROUP if item.path in study_files else item.path.stem
+        item.add_marker(pytest.mark.xdist_group(group))
 
 
 @functools.cache
