@@ -147,6 +147,19 @@ def test_first_pick_is_the_least_sure_allowed_hour(round1):
     assert (ind[h] > np.median(ind[ind >= 0])).all(), "every pick is among the less sure half of the hours"
 
 
+def test_picks_do_not_depend_on_the_thread_count(round1):
+    import numba
+
+    hc, cases, sims, picks = round1
+    before = numba.get_num_threads()
+    try:
+        numba.set_num_threads(1)
+        one = rounds.pick_round(hc, cases, sims, settings=SETTINGS, n=10, number=1)
+    finally:
+        numba.set_num_threads(before)
+    xr.testing.assert_identical(one, picks)
+
+
 def test_validation_outputs_never_steer_the_picks(round1):
     hc, cases, sims, picks = round1
     bent = sims.copy(deep=True)
@@ -257,7 +270,8 @@ def _done_batches(part: Path) -> int:
 
 @pytest.mark.workflow
 def test_kill_inside_a_round_then_resume_is_bit_identical(study, tmp_path):
-    """SIGKILL the simulation of round 1 mid-fan-out, resume: the same bits as the study's."""
+    """SIGKILL the simulation of round 1 mid-fan-out (one worker), resume with two: the bits of
+    the study's store, the finished sea states reused and the picks not recomputed."""
     from test_workflow import OVERLAYS, SNAKEMAKE, clone_study, smk
 
     work = clone_study(study, tmp_path / "k")
@@ -268,7 +282,8 @@ def test_kill_inside_a_round_then_resume_is_bit_identical(study, tmp_path):
     part = mio.partial_path(work / target)
     env = {**os.environ, "PYTHONWARNINGS": "ignore"}
     env.pop("DASK_SCHEDULER_ADDRESS", None)
-    cmd = [SNAKEMAKE, "--cores", "2", target, "--configfile", *overlays]
+    # one worker: the 3 batches run one after the other (a sea state takes about a second here)
+    cmd = [SNAKEMAKE, "--cores", "1", target, "--configfile", *overlays]
     proc = subprocess.Popen(
         cmd, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True, env=env
     )

@@ -10,6 +10,7 @@ module             rules (``workflow/rules/<stage>.smk``) -> function
 ``hydro``          ``hydro`` -> :func:`hydro.run`
 ``simulate``       ``simulate_cases``, ``simulate_discrete``, ``sensitivity_seeds`` ->
                    :func:`simulate.run`
+``rounds``         ``adaptive_picks`` -> :func:`rounds.run` (``simulate_round`` is ``simulate``)
 ``lifecycle``      ``lifecycle`` -> :func:`lifecycle.run`, ``lifecycle_figures`` -> ``figures``
 ``compare``        ``compare`` -> :func:`compare.run`, ``compare_figures`` -> ``figures``
 ``sensitivity``    ``sensitivity_cases`` -> :func:`sensitivity.cases`, ``sensitivity`` ->
