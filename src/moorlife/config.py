@@ -150,6 +150,8 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
     * ``hindcast.start``/``end``: ISO 8601 times on whole hours, end not before start; the
       period holds at least ``selection.n_train + selection.n_validate`` hours; a file source
       names ``hindcast.path``; the sensitivity sea state is below the breaking steepness.
+    * ``lifecycle.adaptive.rounds`` x ``per_round`` is below ``selection.n_train`` (the total of
+      training simulations, of which maximum dissimilarity picks the rest).
     * ``simulation.dt`` resolves the shortest wave period ``2 pi / hydro.omega.max`` with
       :data:`STEPS_PER_PERIOD` steps; ``simulation.kinematics_dt``, as the simulator rounds it
       (to a whole number of steps, at least one), samples that period
@@ -188,6 +190,14 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
                 f"config keys 'selection.n_train' = {n_tr} + 'selection.n_validate' = {n_va} sea states exceed the "
                 f"{hours} hour(s) of the study period hindcast.start .. hindcast.end"
             )
+    n_tr = _get(cfg, "selection.n_train")
+    k, n = _get(cfg, "lifecycle.adaptive.rounds"), _get(cfg, "lifecycle.adaptive.per_round")
+    if all(isinstance(v, int) for v in (n_tr, k, n)) and k > 0 and k * n >= n_tr:
+        fail(
+            f"config keys 'lifecycle.adaptive.rounds' = {k} x 'lifecycle.adaptive.per_round' = {n} = {k * n} adaptive "
+            f"states reach 'selection.n_train' = {n_tr}, the total of training simulations: maximum dissimilarity "
+            "would pick none (rounds x per_round must be below n_train)"
+        )
     if _get(cfg, "hindcast.source") == "file" and not _get(cfg, "hindcast.path"):
         fail("config key 'hindcast.path' = None: a path is required when 'hindcast.source' is 'file'")
     if _get(cfg, "hydro.source") == "wamit" and not _get(cfg, "hydro.wamit_prefix"):

@@ -38,6 +38,25 @@ SENS_MS = SENS["mooring_system"]
 SEEDS = ["results/sensitivity/seeds.zarr"] if SENS_MS in MS_IDS else []
 
 
+# Adaptive selection (rounds.smk): rounds 1..k per system, numbered at parse time. MDA picks
+# selection.n_train - k x per_round states (the budget is checked by validate_config).
+ADAPTIVE = config["lifecycle"]["adaptive"]
+ROUNDS = list(range(1, ADAPTIVE["rounds"] + 1))
+N_MDA = config["selection"]["n_train"] - len(ROUNDS) * ADAPTIVE["per_round"]
+
+
+def earlier_rounds(kind):
+    """Input function: the ``kind`` stores (picks or simulations) of the rounds before ``{r}``."""
+
+    def stores(wildcards):
+        r = int(wildcards.r)
+        if not 1 <= r <= len(ROUNDS):
+            raise ValueError(f"adaptive round {r} is not in 1 .. lifecycle.adaptive.rounds = {len(ROUNDS)}")
+        return [f"results/{wildcards.ms}/rounds/{kind}_{i}.zarr" for i in range(1, r)]
+
+    return stores
+
+
 def mooring_row(ms):
     """The mooring-system table row of one system, as a plain dict (passed as params)."""
     return {k: (v.item() if hasattr(v, "item") else v) for k, v in MOORING.loc[ms].items()}

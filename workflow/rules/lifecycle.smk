@@ -1,6 +1,7 @@
 # Stage 'lifecycle': rebuild every output of the simulated sea states for every hindcast hour
 # with Gaussian RBF interpolation, validate it on the states kept aside, and sum the hourly
-# damage over the hindcast (paper sections 3.4-3.5, methodology step 6). One job per system.
+# damage over the hindcast (paper sections 3.4-3.5, methodology step 6). One job per system;
+# the training states are the MDA states of cases.zarr and the system's adaptive rounds.
 
 
 rule lifecycle:
@@ -9,6 +10,8 @@ rule lifecycle:
         cases="results/selection/cases.zarr",
         simulations="results/{ms}/simulations.zarr",
         platform_cfg=config["platform"],
+        rounds=expand("results/{{ms}}/rounds/picks_{r}.zarr", r=ROUNDS),
+        round_simulations=expand("results/{{ms}}/rounds/simulations_{r}.zarr", r=ROUNDS),
     output:
         store=directory("results/{ms}/lifecycle.zarr"),
     log:

@@ -117,6 +117,16 @@ def loo_error_map(ds: xr.Dataset, title: str = "") -> Figure:
         x = pts.sel(metocean_var=xv).values
         y = pts.sel(metocean_var=yv).values
         sc = ax.scatter(x, y, c=err, s=10, cmap="viridis", vmin=0, vmax=float(np.quantile(err, 0.98)) or 1.0)
+        if "train_round" in ds and (ds["train_round"].values > 0).any():
+            adaptive = ds["train_round"].values > 0
+            ax.scatter(
+                x[adaptive],
+                y[adaptive],
+                s=40,
+                facecolors="none",
+                edgecolors="tab:orange",
+                label=f"{int(adaptive.sum())} picked by {int(ds['train_round'].max())} adaptive round(s)",
+            )
         if sugg.size:
             ax.scatter(
                 ds[xv].values[sugg],
@@ -126,6 +136,7 @@ def loo_error_map(ds: xr.Dataset, title: str = "") -> Figure:
                 s=25,
                 label=f"{sugg.size} suggested next states",
             )
+        if sugg.size or "train_round" in ds:
             ax.legend(fontsize=7, loc="upper right")
         ax.set_xlabel(_METOCEAN_LABEL[xv])
         ax.set_ylabel(_METOCEAN_LABEL[yv])

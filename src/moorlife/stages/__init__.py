@@ -10,6 +10,7 @@ module             rules (``workflow/rules/<stage>.smk``) -> function
 ``hydro``          ``hydro`` -> :func:`hydro.run`
 ``simulate``       ``simulate_cases``, ``simulate_discrete``, ``sensitivity_seeds`` ->
                    :func:`simulate.run`
+``rounds``         ``adaptive_picks`` -> :func:`rounds.run` (``simulate_round`` is ``simulate``)
 ``lifecycle``      ``lifecycle`` -> :func:`lifecycle.run`, ``lifecycle_figures`` -> ``figures``
 ``compare``        ``compare`` -> :func:`compare.run`, ``compare_figures`` -> ``figures``
 ``sensitivity``    ``sensitivity_cases`` -> :func:`sensitivity.cases`, ``sensitivity`` ->
@@ -57,7 +58,7 @@ import os
 from collections.abc import Iterator, Mapping
 from typing import Any
 
-__all__ = ["SCHEDULING_KEYS", "result_settings", "scheduling_free", "logged"]
+__all__ = ["SCHEDULING_KEYS", "result_settings", "scheduling_free", "logged", "thrust_for"]
 
 #: Config keys that change scheduling or memory only, never the numbers, per section, as key
 #: paths inside the section. Kept out of the rules' params and out of every fingerprint.
@@ -111,3 +112,19 @@ def logged(log: str | os.PathLike[str] | None, name: str = "moorlife.stages") ->
 
     with log_to(log):
         yield logging.getLogger(name)
+
+
+def thrust_for(settings: Any, platform_cfg: str | os.PathLike[str] | None) -> Any:
+    """The thrust curve of ``config/platform.yaml`` when the RBF fit may use the thrust space.
+
+    ``settings`` is a :class:`moorlife.lifecycle.RBFSettings`; None unless ``choose`` is
+    ``per_output`` with ``"thrust"`` among its ``spaces`` (the lifecycle and rounds stages).
+    """
+    from moorlife import lifecycle, names
+    from moorlife.io.platform import read_platform_config
+
+    if settings.choose != "per_output" or names.RBF_SPACE_THRUST not in settings.spaces:
+        return None
+    if platform_cfg is None:
+        raise ValueError("lifecycle.rbf.spaces has 'thrust': the stage needs platform_cfg (config/platform.yaml)")
+    return lifecycle.thrust_curve(read_platform_config(platform_cfg), str(platform_cfg))

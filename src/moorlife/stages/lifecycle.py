@@ -5,7 +5,7 @@
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import xarray as xr
@@ -13,11 +13,13 @@ import xarray as xr
 from moorlife import lifecycle as lc_mod
 from moorlife import names
 from moorlife.io import open_zarr, save_figure, write_zarr
-from moorlife.io.platform import read_platform_config
+from moorlife.selection.rounds import annotate_lifecycle
 from moorlife.settings import fill_section
-from moorlife.stages import logged
+from moorlife.stages import logged, thrust_for
+from moorlife.stages.rounds import merged
 
 __all__ = ["run", "figures"]
+
 
 PathLike = str | os.PathLike[str]
 
@@ -31,6 +33,8 @@ def run(
     lifecycle: Mapping[str, Any],
     fatigue: Mapping[str, Any],
     platform_cfg: PathLike | None = None,
+    rounds: Sequence[PathLike] = (),
+    round_simulations: Sequence[PathLike] = (),
     chunk_rows: int | None = None,
     threads: int | None = None,
     log: PathLike | None = None,
@@ -41,6 +45,9 @@ def run(
     ----------
     hindcast, cases, simulations : path-like
         The hindcast, the selected sea states and their simulations.
+    rounds, round_simulations : sequence of path-like
+        The picks and simulations of every adaptive round (``results/{ms}/rounds/picks_{r}.zarr``,
+        ``simulations_{r}.zarr``), fitted with the training states of ``cases``; empty: none.
     store : path-like
         The output store.
     lifecycle, fatigue : mapping
@@ -66,20 +73,25 @@ def run(
         if chunk_rows is not None:
             rbf_cfg["chunk_rows"] = int(chunk_rows)
         settings = lc_mod.rbf_settings(rbf_cfg, source="config.yaml")
-        thrust = None
-        if settings.choose == "per_output" and names.RBF_SPACE_THRUST in settings.spaces:
-            if platform_cfg is None:
-                raise ValueError("lifecycle.rbf.spaces has 'thrust': the lifecycle stage needs platform_cfg")
-            thrust = lc_mod.thrust_curve(read_platform_config(platform_cfg), str(platform_cfg))
+        thrust = thrust_for(settings, platform_cfg)
+        cs, sims = merged(cases, simulations, rounds, round_simulations)
         ds = lc_mod.reconstruct_lifecycle(
             open_zarr(hindcast),
-            open_zarr(cases),
-            open_zarr(simulations),
+            cs,
+            sims,
             settings=settings,
             fatigue_cfg=fatigue,
             n_suggest=int(fill_section("lifecycle.adaptive", lifecycle.get("adaptive"))["n_suggest"]),
             thrust=thrust,
         )
+        if rounds:
+            ds = annotate_lifecycle(ds, cs)
+            logger.info(
+                "training states: %d by maximum dissimilarity + %d from %d adaptive round(s)",
+                ds.attrs["n_train_mda"],
+                ds.attrs["n_train"] - ds.attrs["n_train_mda"],
+                len(rounds),
+            )
         for k in ("validation_r", "validation_rmse"):
             if k in ds:
                 logger.info(
