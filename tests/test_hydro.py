@@ -319,6 +319,37 @@ def test_far_field_drift_matches_capytaine():
         for ours, name in ((0, "drift_force_surge"), (1, "drift_force_sway"), (5, "drift_force_yaw")):
             r = ref[name].isel(wave_direction_k=j, wave_direction_l=j).values.real
             np.testing.assert_allclose(mine[:, j, ours], r, rtol=1e-9)
+    # one depth per frequency (hydro.deep_water_kh): the middle one solved in infinite depth,
+    # the others in 20 m (k h 0.5-1.9, where the two formulas differ)
+    depths = np.array([20.0, np.inf, 20.0])
+    k20 = hydro.wavenumber(omega, 20.0, 9.80665)
+    k_mixed = hydro.wavenumber(omega, depths, 9.80665)
+    np.testing.assert_array_equal(k_mixed[[0, 2]], k20[[0, 2]])
+    assert k_mixed[1] == omega[1] ** 2 / 9.80665
+    kw = dict(rho=1025.0, g=9.80665)
+    mine20 = hydro.far_field_drift(omega, k20, heads, theta, Hd, Hr, X, water_depth=20.0, **kw)
+    mixed = hydro.far_field_drift(omega, k_mixed, heads, theta, Hd, Hr, X, water_depth=depths, **kw)
+    ref_inf = far_field_mean_drift_force(
+        Xd, ds.assign_coords(wavenumber=("omega", omega**2 / 9.80665), water_depth=np.inf)
+    )
+    np.testing.assert_array_equal(mixed[[0, 2]], mine20[[0, 2]])
+    for j in range(2):
+        for ours, name in ((0, "drift_force_surge"), (1, "drift_force_sway"), (5, "drift_force_yaw")):
+            r = ref_inf[name].isel(wave_direction_k=j, wave_direction_l=j).values.real
+            np.testing.assert_allclose(mixed[1, j, ours], r[1], rtol=1e-9)
+            assert not np.isclose(mixed[1, j, ours], mine20[1, j, ours], rtol=1e-3)  # the depth was used
+
+
+def test_solver_depths_follow_the_kh_threshold():
+    g, h = 9.80665, 200.0
+    omega = np.array([0.1, 0.4, 0.5, 1.0, np.inf])
+    kh = np.r_[hydro.wavenumber(omega[:-1], h, g) * h, np.inf]  # 0.46, 3.27, 5.10, 20.4, inf
+    np.testing.assert_array_equal(hydro.solver_depths(omega, h, g, None), [h] * 5)
+    np.testing.assert_array_equal(hydro.solver_depths(omega, h, g, 5.0), [h, h, np.inf, np.inf, np.inf])
+    np.testing.assert_array_equal(hydro.solver_depths(omega, h, g, kh[1]), [h, h, np.inf, np.inf, np.inf])
+    np.testing.assert_array_equal(hydro.solver_depths(omega, h, g, 100.0), [h, h, h, h, np.inf])
+    np.testing.assert_array_equal(hydro.solver_depths(omega, np.inf, g, None), [np.inf] * 5)
+    np.testing.assert_allclose(hydro.wavenumber(omega[:-1], np.inf, g), omega[:-1] ** 2 / g, rtol=0)
 
 
 def test_interp_heading_wraps_around():
@@ -480,6 +511,9 @@ def test_bem_settings_change_only_with_bem_inputs(platform_cfg, study_config):
     coarse = {**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "resolution": "coarse"}}
     assert hydro.bem_settings(coarse, platform_cfg)["panel_size"] == 6.0
     assert "around_refinement" not in base  # at its default: the params of existing runs stay valid
+    assert base["deep_water_kh"] == 10.0  # the schema default
+    finite = {**cfg["hydro"], "deep_water_kh": None}
+    assert "deep_water_kh" not in hydro.bem_settings(finite, platform_cfg)  # null: the params from before
     finer = {**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "around_refinement": 2.0}}
     assert hydro.bem_settings(finer, platform_cfg)["around_refinement"] == 2.0
     with pytest.raises(ValueError, match="hydro.mesh.resolution = 'medium'"):
@@ -563,3 +597,4 @@ def test_bem_identical_whatever_the_worker_count(platform_cfg, quick_config):
     for v in ("added_mass", "added_mass_inf", "damping", "excitation", "drift"):
         ref = float(np.max(np.abs(one[v].values)))
         np.testing.assert_allclose(one[v].values, two[v].values, rtol=0, atol=1e-3 * ref, err_msg=v)
+
