@@ -598,3 +598,53 @@ def test_bem_identical_whatever_the_worker_count(platform_cfg, quick_config):
         ref = float(np.max(np.abs(one[v].values)))
         np.testing.assert_allclose(one[v].values, two[v].values, rtol=0, atol=1e-3 * ref, err_msg=v)
 
+
+# ------------------------------------------------------------ the between-workflow cache
+
+
+def _tiny_wamit(prefix: Path) -> None:
+    """A 2-frequency, 1-heading WAMIT model (dimensionless values, ULEN 1), diagonal terms only."""
+    periods = (20.0, 5.0)
+    rows = [f"{p:12.4E} {i:5d} {i:5d} {1.0 + 0.1 * i:12.4E}" for p in (0.0, -1.0) for i in range(1, 7)]
+    rows += [f"{p:12.4E} {i:5d} {i:5d} {1.0 + 0.1 * i:12.4E} {0.01 * i:12.4E}" for p in periods for i in range(1, 7)]
+    prefix.with_suffix(".1").write_text("\n".join(rows) + "\n")
+    rows = [
+        f"{p:12.4E} {0.0:12.4E} {i:5d} {1.0:12.4E} {0.0:12.4E} {1.0:12.4E} {0.0:12.4E}"
+        for p in periods
+        for i in range(1, 7)
+    ]
+    prefix.with_suffix(".3").write_text("\n".join(rows) + "\n")
+    rows = [f"{i:6d}{j:6d}  {(0.5 if i == j else 0.0):12.4E}" for i in range(1, 7) for j in range(1, 7)]
+    prefix.with_suffix(".hst").write_text("\n".join(rows) + "\n")
+
+
+@pytest.mark.workflow
+@pytest.mark.slow
+def test_hydro_rule_is_a_between_workflow_cache_entry(tmp_path):
+    """Two studies with the same hydro params share one platform.nc through Snakemake's
+    between-workflow cache (--cache, SNAKEMAKE_OUTPUT_CACHE): the second runs no hydro job.
+    The WAMIT source keeps the round trip to seconds; a BEM rule is cached the same way
+    (same rule, key = script + params + input files)."""
+    from test_workflow import OVERLAYS, copy_repo, smk
+
+    cache = tmp_path / "cache"
+    cache.mkdir()
+    _tiny_wamit(tmp_path / "body")
+    overlay = f"hydro:\n  source: wamit\n  wamit_prefix: {tmp_path / 'body'}\n"
+    env = {"SNAKEMAKE_OUTPUT_CACHE": str(cache)}
+    target = "results/hydro/platform.nc"
+    runs = []
+    for name in ("first", "second"):
+        work = copy_repo(tmp_path / name)
+        (work / "wamit.yaml").write_text(overlay)
+        res = smk(work, target, "--cache", overlays=[*OVERLAYS, "wamit.yaml"], env_extra=env)
+        runs.append((work, res.stdout + res.stderr))
+    (first, out1), (second, out2) = runs
+    assert "to cache" in out1 and len(list(cache.iterdir())) == 1, out1[-2000:]
+    assert "from cache" in out2, out2[-2000:]
+    # Snakemake creates the log file; the rule's script, had it run, would have written to it
+    assert (second / "logs/hydro/platform.log").read_text() == "", "the second study ran the hydro job"
+    assert (first / "logs/hydro/platform.log").read_text() != ""
+    assert (second / target).is_symlink()  # Snakemake links a local cache entry
+    assert (first / target).read_bytes() == (second / target).read_bytes()
+    xr.testing.assert_identical(open_platform_nc(second / target), open_platform_nc(first / target))
