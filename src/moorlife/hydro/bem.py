@@ -71,8 +71,10 @@ def solver_depths(omega: npt.ArrayLike, water_depth: float, g: float, deep_water
 
     Above the threshold the finite-depth Green function differs from the infinite-depth one
     by terms of order ``exp(-2 k h)`` (the bottom's image), far below the discretisation
-    error, and costs several times as much (validation/hydro.md, "Deep water"). ``k`` is the
-    finite-depth wavenumber; an infinite frequency counts as ``k h`` infinite.
+    error, and costs 2-3 times as much on the OC4 fine mesh (validation/hydro.md, section 4,
+    which also shows a difference of up to 1e-3 of the peak in the heave terms that does not
+    decay with ``k h``). ``k`` is the finite-depth wavenumber; an infinite frequency counts as
+    ``k h`` infinite.
 
     Parameters
     ----------
