@@ -319,6 +319,37 @@ def test_far_field_drift_matches_capytaine():
         for ours, name in ((0, "drift_force_surge"), (1, "drift_force_sway"), (5, "drift_force_yaw")):
             r = ref[name].isel(wave_direction_k=j, wave_direction_l=j).values.real
             np.testing.assert_allclose(mine[:, j, ours], r, rtol=1e-9)
+    # one depth per frequency (hydro.deep_water_kh): the middle one solved in infinite depth,
+    # the others in 20 m (k h 0.5-1.9, where the two formulas differ)
+    depths = np.array([20.0, np.inf, 20.0])
+    k20 = hydro.wavenumber(omega, 20.0, 9.80665)
+    k_mixed = hydro.wavenumber(omega, depths, 9.80665)
+    np.testing.assert_array_equal(k_mixed[[0, 2]], k20[[0, 2]])
+    assert k_mixed[1] == omega[1] ** 2 / 9.80665
+    kw = dict(rho=1025.0, g=9.80665)
+    mine20 = hydro.far_field_drift(omega, k20, heads, theta, Hd, Hr, X, water_depth=20.0, **kw)
+    mixed = hydro.far_field_drift(omega, k_mixed, heads, theta, Hd, Hr, X, water_depth=depths, **kw)
+    ref_inf = far_field_mean_drift_force(
+        Xd, ds.assign_coords(wavenumber=("omega", omega**2 / 9.80665), water_depth=np.inf)
+    )
+    np.testing.assert_array_equal(mixed[[0, 2]], mine20[[0, 2]])
+    for j in range(2):
+        for ours, name in ((0, "drift_force_surge"), (1, "drift_force_sway"), (5, "drift_force_yaw")):
+            r = ref_inf[name].isel(wave_direction_k=j, wave_direction_l=j).values.real
+            np.testing.assert_allclose(mixed[1, j, ours], r[1], rtol=1e-9)
+            assert not np.isclose(mixed[1, j, ours], mine20[1, j, ours], rtol=1e-3)  # the depth was used
+
+
+def test_solver_depths_follow_the_kh_threshold():
+    g, h = 9.80665, 200.0
+    omega = np.array([0.1, 0.4, 0.5, 1.0, np.inf])
+    kh = np.r_[hydro.wavenumber(omega[:-1], h, g) * h, np.inf]  # 0.46, 3.27, 5.10, 20.4, inf
+    np.testing.assert_array_equal(hydro.solver_depths(omega, h, g, None), [h] * 5)
+    np.testing.assert_array_equal(hydro.solver_depths(omega, h, g, 5.0), [h, h, np.inf, np.inf, np.inf])
+    np.testing.assert_array_equal(hydro.solver_depths(omega, h, g, kh[1]), [h, h, np.inf, np.inf, np.inf])
+    np.testing.assert_array_equal(hydro.solver_depths(omega, h, g, 100.0), [h, h, h, h, np.inf])
+    np.testing.assert_array_equal(hydro.solver_depths(omega, np.inf, g, None), [np.inf] * 5)
+    np.testing.assert_allclose(hydro.wavenumber(omega[:-1], np.inf, g), omega[:-1] ** 2 / g, rtol=0)
 
 
 def test_interp_heading_wraps_around():
@@ -480,6 +511,9 @@ def test_bem_settings_change_only_with_bem_inputs(platform_cfg, study_config):
     coarse = {**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "resolution": "coarse"}}
     assert hydro.bem_settings(coarse, platform_cfg)["panel_size"] == 6.0
     assert "around_refinement" not in base  # at its default: the params of existing runs stay valid
+    assert base["deep_water_kh"] == 10.0  # the schema default
+    finite = {**cfg["hydro"], "deep_water_kh": None}
+    assert "deep_water_kh" not in hydro.bem_settings(finite, platform_cfg)  # null: the params from before
     finer = {**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "around_refinement": 2.0}}
     assert hydro.bem_settings(finer, platform_cfg)["around_refinement"] == 2.0
     with pytest.raises(ValueError, match="hydro.mesh.resolution = 'medium'"):
@@ -494,6 +528,9 @@ def coarse_two_frequencies(platform_cfg, study_config_factory):
     s = hydro.bem_settings(cfg["hydro"], platform_cfg)
     s["omega"] = {"min": 0.05, "max": 2.5, "n": 2}
     s["heading_step"] = 180.0
+    # the fixture was made with every frequency in finite depth (before hydro.deep_water_kh);
+    # the threshold moves the coarse mesh's X3 at 2.5 rad/s by 5e-4 of its peak, above atol
+    s.pop("deep_water_kh")
     return s, hydro.bem_from_settings(s, n_jobs=1)
 
 
@@ -567,3 +604,54 @@ def test_bem_identical_whatever_the_worker_count(coarse_two_frequencies):
     for v in ("added_mass", "added_mass_inf", "damping", "excitation", "drift"):
         ref = float(np.max(np.abs(one[v].values)))
         np.testing.assert_allclose(one[v].values, two[v].values, rtol=0, atol=1e-3 * ref, err_msg=v)
+
+
+# ------------------------------------------------------------ the between-workflow cache
+
+
+def _tiny_wamit(prefix: Path) -> None:
+    """A 2-frequency, 1-heading WAMIT model (dimensionless values, ULEN 1), diagonal terms only."""
+    periods = (20.0, 5.0)
+    rows = [f"{p:12.4E} {i:5d} {i:5d} {1.0 + 0.1 * i:12.4E}" for p in (0.0, -1.0) for i in range(1, 7)]
+    rows += [f"{p:12.4E} {i:5d} {i:5d} {1.0 + 0.1 * i:12.4E} {0.01 * i:12.4E}" for p in periods for i in range(1, 7)]
+    prefix.with_suffix(".1").write_text("\n".join(rows) + "\n")
+    rows = [
+        f"{p:12.4E} {0.0:12.4E} {i:5d} {1.0:12.4E} {0.0:12.4E} {1.0:12.4E} {0.0:12.4E}"
+        for p in periods
+        for i in range(1, 7)
+    ]
+    prefix.with_suffix(".3").write_text("\n".join(rows) + "\n")
+    rows = [f"{i:6d}{j:6d}  {(0.5 if i == j else 0.0):12.4E}" for i in range(1, 7) for j in range(1, 7)]
+    prefix.with_suffix(".hst").write_text("\n".join(rows) + "\n")
+
+
+@pytest.mark.workflow
+@pytest.mark.slow
+def test_hydro_rule_is_a_between_workflow_cache_entry(tmp_path):
+    """Two studies with the same hydro params share one platform.nc through Snakemake's
+    between-workflow cache (--cache, SNAKEMAKE_OUTPUT_CACHE): the second runs no hydro job.
+    The WAMIT source keeps the round trip to seconds; a BEM rule is cached the same way
+    (same rule, key = script + params + input files)."""
+    from test_workflow import OVERLAYS, copy_repo, smk
+
+    cache = tmp_path / "cache"
+    cache.mkdir()
+    _tiny_wamit(tmp_path / "body")
+    overlay = f"hydro:\n  source: wamit\n  wamit_prefix: {tmp_path / 'body'}\n"
+    env = {"SNAKEMAKE_OUTPUT_CACHE": str(cache)}
+    target = "results/hydro/platform.nc"
+    runs = []
+    for name in ("first", "second"):
+        work = copy_repo(tmp_path / name)
+        (work / "wamit.yaml").write_text(overlay)
+        res = smk(work, target, "--cache", overlays=[*OVERLAYS, "wamit.yaml"], env_extra=env)
+        runs.append((work, res.stdout + res.stderr))
+    (first, out1), (second, out2) = runs
+    assert "to cache" in out1 and len(list(cache.iterdir())) == 1, out1[-2000:]
+    assert "from cache" in out2, out2[-2000:]
+    # Snakemake creates the log file; the rule's script, had it run, would have written to it
+    assert (second / "logs/hydro/platform.log").read_text() == "", "the second study ran the hydro job"
+    assert (first / "logs/hydro/platform.log").read_text() != ""
+    assert (second / target).is_symlink()  # Snakemake links a local cache entry
+    assert (first / target).read_bytes() == (second / target).read_bytes()
+    xr.testing.assert_identical(open_platform_nc(second / target), open_platform_nc(first / target))

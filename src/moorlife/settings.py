@@ -239,6 +239,7 @@ class HydroSettings:
     richardson: bool
     irregular_frequency_removal: bool
     kochin_directions: int
+    deep_water_kh: float | None
 
     @classmethod
     def from_config(cls, section: Mapping[str, Any] | None, source: str = "config") -> HydroSettings:
@@ -263,6 +264,7 @@ class HydroSettings:
             richardson=bool(mesh["richardson"]),
             irregular_frequency_removal=bool(s["irregular_frequency_removal"]),
             kochin_directions=int(s["kochin_directions"]),
+            deep_water_kh=None if s["deep_water_kh"] is None else float(s["deep_water_kh"]),
         )
 
 

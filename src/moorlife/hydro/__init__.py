@@ -49,6 +49,7 @@ from moorlife.hydro.bem import (
     platform_dataset,
     richardson,
     run_bem,
+    solver_depths,
     wavenumber,
 )
 from moorlife.hydro.body import (
@@ -109,6 +110,7 @@ __all__ = [
     "richardson",
     "bem_settings",
     "wavenumber",
+    "solver_depths",
     "far_field_drift",
     "platform_dataset",
     # rigid body and hydrostatics

@@ -47,17 +47,61 @@ def heading_grid(step_deg: float) -> np.ndarray:
     return np.deg2rad(np.arange(0.0, 360.0 - 1e-9, step))
 
 
-def wavenumber(omega: npt.ArrayLike, depth: float, g: float) -> np.ndarray:
-    """Finite-depth wavenumber from ``omega^2 = g k tanh(k h)`` (Newton, rad/m)."""
+def wavenumber(omega: npt.ArrayLike, depth: npt.ArrayLike, g: float) -> np.ndarray:
+    """Wavenumber from ``omega^2 = g k tanh(k h)`` (Newton, rad/m).
+
+    ``depth`` is a scalar or one depth per frequency; where it is infinite, ``k = omega^2 / g``.
+    """
     w = np.asarray(omega, dtype=float)
+    h_all = np.broadcast_to(np.asarray(depth, dtype=float), w.shape)
+    deep = np.isinf(h_all)
+    h = np.where(deep, 1.0, h_all)  # placeholder depth where infinite (overwritten below)
     k0 = w**2 / g
-    k = np.where(k0 * depth > 20, k0, np.maximum(k0, w / np.sqrt(g * depth)))
+    k = np.where(k0 * h > 20, k0, np.maximum(k0, w / np.sqrt(g * h)))
     for _ in range(60):
-        th = np.tanh(k * depth)
+        th = np.tanh(k * h)
         f = g * k * th - w**2
-        df = g * th + g * k * depth * (1.0 - th**2)
+        df = g * th + g * k * h * (1.0 - th**2)
         k = k - f / df
-    return k
+    return np.where(deep, k0, k)
+
+
+def solver_depths(omega: npt.ArrayLike, water_depth: float, g: float, deep_water_kh: float | None) -> np.ndarray:
+    """The water depth each frequency is solved with: infinite where ``k h > deep_water_kh``.
+
+    Above the threshold the finite-depth Green function differs from the infinite-depth one
+    by terms of order ``exp(-2 k h)`` (the bottom's image), far below the discretisation
+    error, and costs 2-3 times as much on the OC4 fine mesh (validation/hydro.md, section 4,
+    which also shows a difference of up to 1e-3 of the peak in the heave terms that does not
+    decay with ``k h``). ``k`` is the finite-depth wavenumber; an infinite frequency counts as
+    ``k h`` infinite.
+
+    Parameters
+    ----------
+    omega : array-like
+        ``(nw,)`` rad/s (``inf`` allowed).
+    water_depth : float
+        The site's depth in m.
+    g : float
+        m/s^2.
+    deep_water_kh : float or None
+        The threshold; ``None`` solves every frequency with the finite depth.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(nw,)`` depths in m, ``water_depth`` or ``inf``.
+    """
+    w = np.asarray(omega, dtype=float)
+    h = float(water_depth)
+    out = np.full(w.shape, h)
+    if deep_water_kh is None or np.isinf(h):
+        return np.full(w.shape, np.inf) if np.isinf(h) else out
+    finite = np.isfinite(w)
+    kh = np.full(w.shape, np.inf)
+    kh[finite] = wavenumber(w[finite], h, g) * h
+    out[kh > float(deep_water_kh)] = np.inf
+    return out
 
 
 def bem_settings(hydro_cfg: Mapping, platform_cfg: Mapping) -> dict:
@@ -65,8 +109,10 @@ def bem_settings(hydro_cfg: Mapping, platform_cfg: Mapping) -> dict:
 
     Geometry and environment come from ``platform.yaml``; grid, headings and mesh from the
     ``hydro`` section of the study config. Mass properties and the linear mooring stiffness
-    are included because the mean drift coefficients depend on the body motions. For
-    ``source: wamit`` only the file prefix and the environment matter.
+    are included because the mean drift coefficients depend on the body motions, the installed
+    Capytaine version because the solver's numbers change with it (these params are also the
+    key of the rule's between-workflow cache). For ``source: wamit`` only the file prefix and
+    the environment matter.
     """
     h = HydroSettings.from_config(hydro_cfg, source="config.yaml")
     raw = fill_section("hydro", hydro_cfg, source="config.yaml")  # the omega grid as written
@@ -80,8 +126,11 @@ def bem_settings(hydro_cfg: Mapping, platform_cfg: Mapping) -> dict:
     # omitted at its default 1.0: the mesh is then the one from before the option existed, and
     # the settings (the rule's params) of existing runs stay valid, so no BEM reruns for nothing
     extra = {"around_refinement": around} if around != 1.0 else {}
+    # the same for the deep-water threshold at null (every frequency in finite depth, as before)
+    deep = {"deep_water_kh": h.deep_water_kh} if h.deep_water_kh is not None else {}
     return {
         "source": h.source,
+        "capytaine": _capytaine_version(),
         "wamit_prefix": h.wamit_prefix,
         "environment": dict(platform_cfg["environment"]),
         "members": [dict(m) for m in platform_cfg["members"]],
@@ -92,10 +141,20 @@ def bem_settings(hydro_cfg: Mapping, platform_cfg: Mapping) -> dict:
         "rotational_symmetry": h.rotational_symmetry,
         "irregular_frequency_removal": h.irregular_frequency_removal,
         "kochin_directions": h.kochin_directions,
+        **deep,
         "bodies": {k: dict(platform_cfg[k]) for k in ("platform", "tower", "rna")},
         "mooring_stiffness_diag": list(platform_cfg.get("mooring_stiffness_diag", [0.0] * 6)),
         **extra,
     }
+
+
+def _capytaine_version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("capytaine")
+    except PackageNotFoundError:  # no BEM possible; the rule's script says so when it runs
+        return "not installed"
 
 
 def run_bem(
@@ -110,6 +169,7 @@ def run_bem(
     stiffness: np.ndarray,
     n_kochin: int = 72,
     n_jobs: int = 1,
+    deep_water_kh: float | None = None,
 ) -> xr.Dataset:
     """Solve radiation and diffraction with Capytaine and build the ``platform.nc`` dataset.
 
@@ -129,6 +189,9 @@ def run_bem(
         ``(6, 6)`` total restoring (hydrostatic + gravity + linear mooring) for the same.
     n_kochin : int
         Number of directions of the Kochin functions (far-field mean drift).
+    deep_water_kh : float or None
+        Frequencies with ``k h`` above it (and the infinite frequency) are solved with the
+        infinite-depth Green function (:func:`solver_depths`); ``None``: all in ``water_depth``.
     n_jobs : int
         Worker processes; every frequency is solved single-threaded, in a fixed order, by a
         fresh solver in a freshly spawned process, so the result does not depend on ``n_jobs``
@@ -152,8 +215,18 @@ def run_bem(
     omega = np.asarray(omega, dtype=float)
     headings = np.asarray(headings, dtype=float)
     dofs = list(body.dofs)
-    kw = dict(water_depth=float(water_depth), rho=float(rho), g=float(g))
+    depths = solver_depths([*omega, np.inf], water_depth, g, deep_water_kh)  # the last: A_inf
+    kws = [dict(water_depth=float(d), rho=float(rho), g=float(g)) for d in depths]
     log.info("capytaine: %d faces (+lid), %d frequencies, %d headings", body.mesh.nb_faces, omega.size, headings.size)
+    deep = np.isinf(depths[:-1]) & np.isfinite(float(water_depth))
+    if deep.any():
+        log.info(
+            "capytaine: %d of %d frequencies (omega >= %.3f rad/s, k h > %g) in infinite depth",
+            int(deep.sum()),
+            omega.size,
+            float(omega[deep].min()),
+            deep_water_kh,
+        )
     theta = np.linspace(0.0, 2.0 * np.pi, int(n_kochin) + 1)
     nw, nh, nt = omega.size, headings.size, theta.size
     A = np.zeros((nw, 6, 6))
@@ -168,7 +241,9 @@ def run_bem(
     # depend on what the process had solved before (2.5e-4 relative, seen inside pytest)
     ctx = multiprocessing.get_context("spawn")
     with ProcessPoolExecutor(max_workers=max(1, int(n_jobs)), mp_context=ctx, max_tasks_per_child=1) as pool:
-        jobs = [pool.submit(_solve_frequency, body, float(w), headings, theta, kw) for w in [*omega, np.inf]]
+        jobs = [
+            pool.submit(_solve_frequency, body, float(w), headings, theta, kw) for w, kw in zip([*omega, np.inf], kws)
+        ]
         parts = [j.result() for j in jobs]
     for iw, (a_w, b_w, f_w, hr_w, hd_w) in enumerate(parts[:-1]):
         A[iw], B[iw], F[iw], H_rad[iw], H_dif[iw] = a_w, b_w, f_w, hr_w, hd_w
@@ -176,10 +251,11 @@ def run_bem(
     A_inf = parts[-1][0]
     hs = body.compute_hydrostatic_stiffness(rho=rho, g=g).sel(influenced_dof=dofs, radiating_dof=dofs).values
     C_hydro = np.asarray(hs, dtype=float)
-    # motions (Capytaine convention) and far-field mean drift
-    k = wavenumber(omega, water_depth, g)
+    # motions (Capytaine convention) and far-field mean drift, each frequency with the depth
+    # (and so the wavenumber) its Kochin functions were computed with
+    k = wavenumber(omega, depths[:-1], g)
     xi = motion_rao(omega, mass_matrix, A, B, stiffness, np.conj(F))  # our convention
-    drift = far_field_drift(omega, k, headings, theta, H_dif, H_rad, np.conj(xi), water_depth=water_depth, rho=rho, g=g)
+    drift = far_field_drift(omega, k, headings, theta, H_dif, H_rad, np.conj(xi), water_depth=depths[:-1], rho=rho, g=g)
     attrs = {
         "source": f"capytaine {cpt.__version__}",
         "panels": int(body.mesh.nb_faces),
@@ -189,6 +265,11 @@ def run_bem(
         "waterplane_area": float(body.waterplane_area),
         "drift_method": "far-field (Kochin functions, Maruo/Newman), surge sway yaw; heave roll pitch 0",
     }
+    if deep_water_kh is not None:
+        attrs["deep_water_kh"] = float(deep_water_kh)
+        attrs["infinite_depth_frequencies"] = int(deep.sum())
+        attrs["infinite_depth_omega_min"] = float(omega[deep].min()) if deep.any() else float("inf")
+        attrs["added_mass_inf_depth"] = float(depths[-1])
     return platform_dataset(
         omega,
         headings,
@@ -253,7 +334,7 @@ def far_field_drift(
     H_rad: np.ndarray,
     rao_capytaine: np.ndarray,
     *,
-    water_depth: float,
+    water_depth: npt.ArrayLike,
     rho: float,
     g: float,
 ) -> np.ndarray:
@@ -276,6 +357,8 @@ def far_field_drift(
         radiation problems prescribe a unit displacement, velocity ``-i w``).
     rao_capytaine : numpy.ndarray
         ``(nw, nh, 6)`` motion per unit amplitude in Capytaine's convention.
+    water_depth : float or numpy.ndarray
+        m, one value or ``(nw,)``: the depth each frequency was solved with (``inf`` allowed).
 
     Returns
     -------
@@ -307,13 +390,16 @@ def far_field_drift(
             for i in range(H.shape[0])
         ]
     )
-    h = float(water_depth)
+    h_all = np.broadcast_to(np.asarray(water_depth, dtype=float), np.shape(omega))
+    deep = np.isinf(h_all)
+    h = np.where(deep, 1.0, h_all)  # placeholder where infinite (the deep formula is used there)
     coef1 = 2 * np.pi * rho * omega
-    if np.isinf(h):
-        coef2 = 2 * np.pi * rho * k**2
-    else:
-        k0 = omega**2 / g
-        coef2 = 2 * np.pi * rho * k * (k0 * h) ** 2 / (h * ((k * h) ** 2 - (k0 * h) ** 2 + k0 * h))
+    k0 = omega**2 / g
+    coef2 = np.where(
+        deep,
+        2 * np.pi * rho * k**2,
+        2 * np.pi * rho * k * (k0 * h) ** 2 / (h * ((k * h) ** 2 - (k0 * h) ** 2 + k0 * h)),
+    )
     c1, c2 = coef1[:, None], coef2[:, None]
     absH2 = np.abs(H) ** 2
     integ = lambda f: np.trapezoid(f, theta, axis=-1)  # noqa: E731
@@ -489,6 +575,7 @@ def _bem_one_mesh(settings: Mapping, panel_size: float, n_jobs: int) -> xr.Datas
         stiffness=C,
         n_kochin=settings["kochin_directions"],
         n_jobs=n_jobs,
+        deep_water_kh=settings.get("deep_water_kh"),  # omitted at null (bem_settings)
     )
     ds.attrs.update(
         {

@@ -41,8 +41,9 @@ def run(
         The rule's log file.
     """
     env = bem["environment"]
-    with logged(log, __name__):
+    with logged(log, __name__) as logger:
         if bem["source"] == "wamit":
+            logger.info("hydro: WAMIT files %s.*", bem["wamit_prefix"])
             ds = read_wamit_dataset(
                 bem["wamit_prefix"], rho=env["rho_water"], g=env["gravity"], water_depth=env["water_depth"]
             )
