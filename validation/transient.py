@@ -316,6 +316,10 @@ def main() -> None:
             for k, x in alt.items():
                 other.setdefault(k, []).append(x)
             print(f"  {ms}: {sl.stop}/{n} states, {time.process_time() - t0:.0f} CPU-s", flush=True)
+            if args.out:  # the raw statistics so far (--from-npz reads a partial run)
+                part = {f"{ms}/{v}/{k}": np.concatenate(x) for v, st in res.items() for k, x in st.items()}
+                part.update({f"{ms}/rest600_seed2/{k}": np.concatenate(x) for k, x in other.items()})
+                np.savez(args.out, **raw, **part)
         cat = {v: {k: np.concatenate(x) for k, x in st.items()} for v, st in res.items()}
         s2 = {k: np.concatenate(x) for k, x in other.items()}
         for v, st in cat.items():
