@@ -620,3 +620,169 @@ def test_compiled_record_loop_equals_the_per_step_loop(kind, monkeypatch):
         np.testing.assert_array_equal(a, b, err_msg=field)
     for name in fast:
         np.testing.assert_array_equal(fast[name], slow[name], err_msg=name)
+
+
+# --------------------------------------------------------------------------------------
+# the start of a record: the mean equilibrium (issue 23, target 2)
+# --------------------------------------------------------------------------------------
+
+
+def _independent_static_solve(model, load):
+    """The static balance by scipy's root finder on the mooring package's own kinematics and loads."""
+    from scipy.optimize import root
+
+    from moorlife import mooring as moor
+
+    props, layout, cfg, _ = model.mooring_args
+    lines = moor.make_mooring("quasistatic", props, layout, cfg, batch=1)
+
+    def residual(q):
+        r, _ = moor.fairlead_kinematics(layout, q[None], np.zeros((1, 6)))
+        f = np.array(lines.forces(lines.init(r)))
+        return load + model.static_load + moor.mooring_loads(f, r, q[None, :3])[0] - model.stiffness @ q
+
+    sol = root(residual, np.zeros(6), method="hybr", options={"xtol": 1e-12})
+    assert sol.success
+    return sol.x
+
+
+def test_mean_load_is_the_thrust_and_the_mean_wave_force(ms3):
+    grid = env.record_grid(100.0, 0.0, 0.1)
+    f = quiet_forcing(ms3, grid, nb=2, wind=11.4, wind_dir=300.0)
+    f.force[1, :, :] = np.arange(6.0) * 1e4 + np.sin(np.arange(grid.n_steps + 1))[:, None]  # a mean and a wiggle
+    load = sim.mean_load(ms3, f)
+    thrust = float(np.interp(11.4, ms3.thrust_speed, ms3.thrust_force))
+    e = f.wind_dir[0]
+    hub = ms3.hub
+    expect = np.array([thrust * e[0], thrust * e[1], 0.0, -hub[2] * thrust * e[1], hub[2] * thrust * e[0], 0.0])
+    expect[5] = hub[0] * thrust * e[1] - hub[1] * thrust * e[0]
+    np.testing.assert_allclose(load[0], expect, rtol=1e-12, atol=1e-6)
+    np.testing.assert_allclose(load[1] - load[0], f.force[1].mean(axis=0), rtol=1e-12, atol=1e-6)
+
+
+def test_mean_offset_matches_a_separate_static_solve(ms3):
+    """The start's offset is the static balance of its mean load, found here by another solver."""
+    grid = env.record_grid(100.0, 0.0, 0.1)
+    f = quiet_forcing(ms3, grid, wind=11.4, wind_dir=300.0)
+    eq = sim.mean_equilibrium(ms3, f)
+    q_ref = _independent_static_solve(ms3, sim.mean_load(ms3, f)[0])
+    assert np.hypot(q_ref[0], q_ref[1]) > 5.0  # a real offset (m), off the axes (wind from 300 deg)
+    np.testing.assert_allclose(eq.displacement[0, :3], q_ref[:3], atol=1e-6)
+    np.testing.assert_allclose(eq.displacement[0, 3:], q_ref[3:], atol=1e-9)
+    np.testing.assert_allclose(eq.residual[0], 0.0, atol=1e-3)
+    q_one, ten = sim.static_equilibrium(ms3, sim.mean_load(ms3, f)[0])
+    np.testing.assert_array_equal(q_one, eq.displacement[0])
+    np.testing.assert_array_equal(ten, eq.tension[0])
+
+
+@pytest.mark.parametrize("kind", ["quasistatic", "dynamic"])
+def test_equilibrium_start_stays_put_without_waves(kind):
+    """Steady wind, no waves: the platform started at its mean equilibrium does not move, and
+    the rest start of the same record swings by metres (what the transient used to discard)."""
+    model = moored("MS1", kind)
+    grid = env.record_grid(150.0, 0.0, 0.1)
+    f = quiet_forcing(model, grid, wind=11.4, wind_dir=300.0)
+    start = sim.equilibrium_start(model, f)
+    q0 = start.displacement.copy()
+    rec = sim.integrate(model, f, transient=0.0, start=start)
+    np.testing.assert_array_equal(start.displacement, q0)  # the caller's start is not modified
+    drift = np.abs(rec.motion[0] - q0[0][:, None]).max(axis=-1)
+    tol = (1e-9, 1e-11) if kind == "quasistatic" else (5e-3, 1e-5)  # m, rad
+    assert drift[:3].max() < tol[0] and drift[3:].max() < tol[1], drift
+    ten = rec.tension[0]
+    assert np.ptp(ten, axis=-1).max() < (1e-3 if kind == "quasistatic" else 1e-3 * ten.mean())
+    rest = sim.integrate(model, f, transient=0.0)
+    assert np.abs(rest.motion[0, :2] - q0[0, :2, None]).max() > 3.0
+
+
+def test_dynamic_lines_start_on_the_static_catenary_at_the_offset():
+    from moorlife import mooring as moor
+    from moorlife.mooring.quasistatic import catenary_profile
+
+    model = moored("MS1", "dynamic")
+    grid = env.record_grid(50.0, 0.0, 0.1)
+    f = quiet_forcing(model, grid, wind=11.4, wind_dir=300.0)
+    eq = sim.mean_equilibrium(model, f, check=True)
+    start = sim.equilibrium_start(model, f)
+    np.testing.assert_array_equal(start.displacement, eq.displacement)
+    assert np.abs(eq.residual[0, :3]).max() < 200.0  # N, against a thrust of about 750 kN
+    props, layout, cfg, proto = model.mooring_args
+    r_f, _ = moor.fairlead_kinematics(layout, eq.displacement, np.zeros((1, 6)))
+    lines = moor.DynamicMooring(proto.model, props, layout, proto.settings, 1)
+    nodes = lines.init(r_f).r[0]  # (L, N + 1, 3)
+    for k in range(3):
+        d = r_f[0, k] - layout.anchors[k]
+        span = float(np.hypot(d[0], d[1]))
+        h, v = moor.catenary_solve(span, float(d[2]), layout.length, props.EA, props.wet_weight)
+        s = np.linspace(0.0, layout.length, nodes.shape[1])
+        prof = catenary_profile(s, h, v, layout.length, props.EA, props.wet_weight)
+        along = (nodes[k, :, :2] - layout.anchors[k, :2]) @ (d[:2] / span)
+        # node by node on the catenary (the lumped-mass seabed springs and segments: decimetres)
+        np.testing.assert_allclose(along, prof[:, 0], atol=0.5)
+        np.testing.assert_allclose(nodes[k, :, 2] - layout.anchors[k, 2], prof[:, 1], atol=0.5)
+    rec = sim.integrate(model, f, transient=0.0, start=start)
+    np.testing.assert_allclose(rec.tension[0, :, 0], eq.tension[0], rtol=5e-3)  # t = 0: the catenary's
+
+
+def test_equilibrium_start_keeps_batches_bit_identical_with_dynamic_lines():
+    model = moored("MS1", "dynamic")
+    kw = dict(
+        mooring_system="MS1",
+        seed=5,
+        model_inputs=model,
+        sim_cfg={**SIM, "duration": 120.0},
+        fatigue_cfg={},
+        stats_cfg=STATS,
+    )
+    both = sim.simulate_batch(sea(2), case_ids=np.array([10, 11]), **kw)
+    one = sim.simulate_batch({k: v[1:2] for k, v in sea(2).items()}, case_ids=np.array([11]), **kw)
+    for name in both:
+        np.testing.assert_array_equal(both[name][1:2], one[name], err_msg=name)
+
+
+def test_forcing_from_is_the_same_realisation_later():
+    m = synthetic_model(strips=True)
+    grid = env.record_grid(100.0, 20.0, 0.1)
+    ph, wph = env.case_streams(1, "MS1", [0], grid.n_fft // 2 + 1)
+    waves = env.wave_components(grid, [2.0], [9.0], [270.0], [3.3], ph, omega_min=0.05, omega_max=3.0)
+    wind = env.wind_series(grid, [10.0], wph, {"spectrum": "npd", "height": 90.0, "f_max": 0.5})
+    f = sim.build_forcing(m, grid, waves, wind, np.array([270.0]), kin_every=2)
+    g = sim.forcing_from(f, 200)
+    assert g.grid.n_steps == grid.n_steps - 200 and g.grid.n_fft == grid.n_fft
+    np.testing.assert_array_equal(g.force, f.force[:, 200:])
+    np.testing.assert_array_equal(g.wind, f.wind[:, 200:])
+    np.testing.assert_array_equal(g.kinematics, f.kinematics[:, 100:])
+    assert g.kinematics.shape[1] == g.grid.n_steps // 2 + 2
+    with pytest.raises(ValueError, match="multiple of kin_every"):
+        sim.forcing_from(f, 201)
+
+
+def test_short_transient_from_equilibrium_gives_the_long_transient_statistics(ms3):
+    """Paired (one realisation, one kept window): 100 s from the mean equilibrium against 600 s
+    from rest; the rest start with 100 s is the control that shows the transient is there."""
+    from moorlife.settings import SimulationSettings, StatisticsSettings
+
+    sea1 = sea(1, wind_speed=[12.0], wind_dir=[300.0], hs=[3.0], tp=[10.0], wave_dir=[280.0])
+    s = SimulationSettings.from_config({**SIM, "duration": 400.0, "transient": 600.0})
+    f = sim.batch_forcing(sea1, case_ids=np.array([1]), mooring_system="MS3", seed=2, model=ms3, settings=s)
+    late = sim.forcing_from(f, 5000)
+
+    def stats(rec):
+        out = sim.summarise(
+            rec,
+            line_info=ms3.line_info,
+            fatigue_cfg={},
+            statistics=StatisticsSettings.from_config(STATS),
+            mpm_duration=3600.0,
+        )
+        return {k: float(np.max(v)) for k, v in out.items() if not k.startswith("gev_corr")}
+
+    long = stats(sim.integrate(ms3, f, transient=600.0))
+    short = stats(sim.integrate(ms3, late, transient=100.0, start=sim.equilibrium_start(ms3, late)))
+    control = stats(sim.integrate(ms3, late, transient=100.0))
+    assert long["surge_mean"] > 3.0
+    for key in ("surge_mean", "sway_mean", "surge_std", "surge_mpm", "tension_mean", "tension_std", "tension_mpm"):
+        assert short[key] == pytest.approx(long[key], rel=0.02), key
+    assert short["damage_sn"] == pytest.approx(long["damage_sn"], rel=0.05)
+    worst = max(abs(control[k] / long[k] - 1) for k in ("surge_std", "tension_std", "damage_sn"))
+    assert worst > 0.05  # without the equilibrium start, 100 s is not enough

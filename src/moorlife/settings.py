@@ -181,6 +181,7 @@ class SimulationSettings:
 
     duration: float
     transient: float
+    start: str
     batch_size: int
     dt: float
     gamma: str | float
@@ -202,6 +203,7 @@ class SimulationSettings:
         return cls(
             duration=float(s["duration"]),
             transient=float(s["transient"]),
+            start=str(s["start"]),
             batch_size=int(s["batch_size"]),
             dt=float(s["dt"]),
             gamma=str(g) if isinstance(g, str) else float(g),

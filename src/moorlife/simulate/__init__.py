@@ -28,14 +28,18 @@ Design notes
 * Loads use linearised kinematics (small rotations): strip and hub velocities are
   ``v + omega x p`` with the body-frame position ``p``; the fairleads use the exact rotation.
 * Wave kinematics for drag are evaluated at the strips' mean positions (first order).
-* The kept record starts after ``transient``; statistics use only the kept part.
+* Every record starts at rest at its mean equilibrium (``simulation.start``,
+  :mod:`~moorlife.simulate.initial`): the static offset under its mean thrust and mean drift,
+  the lines in their static shape there, the filters at their steady states. The kept record
+  starts after ``transient``; statistics use only the kept part.
 * A batch is bit-identical to its cases run alone: every random stream comes from
   ``case_rng(seed, mooring_system, case_id)`` and the kernel treats cases independently.
 
 Modules, one concept each (this package re-exports their public API):
 :mod:`~moorlife.simulate.model` (the model inputs), :mod:`~moorlife.simulate.forcing` (waves,
 drag kinematics and wind on the integration grid), :mod:`~moorlife.simulate.kernel` (the Numba
-kernels), :mod:`~moorlife.simulate.integration` (the step loop, :func:`integrate`),
+kernels), :mod:`~moorlife.simulate.initial` (the start of a record: the mean equilibrium),
+:mod:`~moorlife.simulate.integration` (the step loop, :func:`integrate`),
 :mod:`~moorlife.simulate.linear` (linear analysis, verification), :mod:`~moorlife.simulate.summary`
 (statistics of a record), :mod:`~moorlife.simulate.batch` (one batch of sea states) and
 :mod:`~moorlife.simulate.prepare` (model preparation, once per mooring system).
@@ -44,8 +48,17 @@ kernels), :mod:`~moorlife.simulate.integration` (the step loop, :func:`integrate
 from __future__ import annotations
 
 from moorlife import names  # noqa: F401 - callers read ``simulate.names``
-from moorlife.simulate.batch import simulate_batch
-from moorlife.simulate.forcing import Forcing, build_forcing
+from moorlife.simulate.batch import batch_forcing, simulate_batch
+from moorlife.simulate.forcing import Forcing, build_forcing, forcing_from
+from moorlife.simulate.initial import (
+    Equilibrium,
+    InitialState,
+    at_rest,
+    equilibrium_start,
+    mean_equilibrium,
+    mean_load,
+    static_offsets,
+)
 from moorlife.simulate.integration import Record, _run_compiled, integrate  # noqa: F401 - tests
 from moorlife.simulate.kernel import rotation_matrix
 from moorlife.simulate.linear import (
@@ -86,6 +99,15 @@ __all__ = [
     "attach_mooring",
     "platform_from",
     "build_forcing",
+    "forcing_from",
+    "batch_forcing",
+    "InitialState",
+    "Equilibrium",
+    "at_rest",
+    "mean_load",
+    "static_offsets",
+    "mean_equilibrium",
+    "equilibrium_start",
     "integrate",
     "summarise",
     "simulate_batch",

@@ -10,12 +10,13 @@ import numpy as np
 from moorlife import environment as env
 from moorlife import names
 from moorlife.settings import SimulationSettings, StatisticsSettings
-from moorlife.simulate.forcing import build_forcing
+from moorlife.simulate.forcing import Forcing, build_forcing
+from moorlife.simulate.initial import equilibrium_start
 from moorlife.simulate.integration import integrate
 from moorlife.simulate.model import ModelInputs
 from moorlife.simulate.summary import summarise
 
-__all__ = ["simulate_batch"]
+__all__ = ["simulate_batch", "batch_forcing"]
 
 
 def _sim_settings(sim_cfg: Mapping[str, Any] | None) -> SimulationSettings:
@@ -47,6 +48,53 @@ def _check_cases(cases: Mapping[str, np.ndarray], case_ids: np.ndarray) -> dict[
             i = int(np.flatnonzero(bad)[0])
             raise ValueError(f"simulate_batch: case {case_ids[i]}: {k} = {float(v[i])!r} is invalid")
     return arr
+
+
+def batch_forcing(
+    sea: Mapping[str, np.ndarray],
+    *,
+    case_ids: np.ndarray,
+    mooring_system: str,
+    seed: int,
+    model: ModelInputs,
+    settings: SimulationSettings,
+    stream: str = "case",
+    grid: env.RecordGrid | None = None,
+) -> Forcing:
+    """The waves and wind of a batch of sea states on its record grid (``transient + duration``).
+
+    Parameters
+    ----------
+    sea : mapping of str to (B,) arrays
+        The checked sea-state variables (see :func:`simulate_batch`).
+    case_ids : (B,) int
+    mooring_system : str
+    seed : int
+    model : ModelInputs
+    settings : SimulationSettings
+    stream : str
+    grid : environment.RecordGrid, optional
+        Another number of steps on the record's FFT grid (e.g. one whole period, ``n_steps =
+        n_fft - 1``, for ``validation/transient.py``); default the record's grid.
+
+    Returns
+    -------
+    Forcing
+    """
+    s = settings
+    ids = np.atleast_1d(np.asarray(case_ids))
+    grid = env.record_grid(s.duration, s.transient, s.dt) if grid is None else grid
+    n_bins = grid.n_fft // 2 + 1
+    wave_ph, wind_ph = env.case_streams(seed, mooring_system, ids, n_bins, stream)
+    gamma = env.resolve_gamma(s.gamma, sea["hs"], sea["tp"])
+    w_lo, w_hi = float(model.omega.min()), float(model.omega.max())
+    waves = env.wave_components(
+        grid, sea["hs"], sea["tp"], sea["wave_dir"], gamma, wave_ph, omega_min=w_lo, omega_max=w_hi
+    )
+    wind_cfg = {**s.wind.as_dict(), "height": float(model.hub[2])}
+    wind = env.wind_series(grid, sea["wind_speed"], wind_ph, wind_cfg)
+    kin_every = max(1, int(round(s.kinematics_dt / s.dt)))
+    return build_forcing(model, grid, waves, wind, sea["wind_dir"], kin_every=kin_every, second_order=s.second_order)
 
 
 def simulate_batch(
@@ -91,19 +139,12 @@ def simulate_batch(
     sea = _check_cases(cases, ids)
     s = _sim_settings(sim_cfg)
     model = model_inputs
-    grid = env.record_grid(s.duration, s.transient, s.dt)
-    n_bins = grid.n_fft // 2 + 1
-    wave_ph, wind_ph = env.case_streams(seed, mooring_system, ids, n_bins, stream)
-    gamma = env.resolve_gamma(s.gamma, sea["hs"], sea["tp"])
-    w_lo, w_hi = float(model.omega.min()), float(model.omega.max())
-    waves = env.wave_components(
-        grid, sea["hs"], sea["tp"], sea["wave_dir"], gamma, wave_ph, omega_min=w_lo, omega_max=w_hi
+    forcing = batch_forcing(
+        sea, case_ids=ids, mooring_system=mooring_system, seed=seed, model=model, settings=s, stream=stream
     )
-    wind_cfg = {**s.wind.as_dict(), "height": float(model.hub[2])}
-    wind = env.wind_series(grid, sea["wind_speed"], wind_ph, wind_cfg)
-    kin_every = max(1, int(round(s.kinematics_dt / s.dt)))
-    forcing = build_forcing(model, grid, waves, wind, sea["wind_dir"], kin_every=kin_every, second_order=s.second_order)
-    record = integrate(model, forcing, transient=s.transient)
+    # simulation.start: every record at its mean equilibrium, or at rest at the trimmed origin
+    start = equilibrium_start(model, forcing) if s.start == "equilibrium" else None
+    record = integrate(model, forcing, transient=s.transient, start=start)
     bad = ~np.isfinite(record.motion).all(axis=(1, 2))
     if model.mooring_kind != "linear":
         bad |= ~np.isfinite(record.tension).all(axis=(1, 2))

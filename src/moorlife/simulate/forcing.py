@@ -11,7 +11,7 @@ import scipy.fft
 from moorlife import environment as env
 from moorlife.simulate.model import ModelInputs
 
-__all__ = ["Forcing", "build_forcing"]
+__all__ = ["Forcing", "build_forcing", "forcing_from"]
 
 
 @dataclass(frozen=True)
@@ -159,4 +159,40 @@ def build_forcing(
         wind_dir=wdir,
         kin_every=int(kin_every),
         kinematics=kin,
+    )
+
+
+def forcing_from(forcing: Forcing, step: int) -> Forcing:
+    """The same forcing from step ``step`` on, as the forcing of a record that starts there.
+
+    Sample ``j`` of the result is sample ``step + j`` of ``forcing``: the wave and wind
+    realisation is unchanged, only the time origin moves. With it, records started at different
+    times (different transients) see the same waves and wind over the same kept window, for
+    paired comparisons (``validation/transient.py``). The grid keeps its FFT length and
+    frequency step (those of the synthesis).
+
+    Parameters
+    ----------
+    forcing : Forcing
+    step : int
+        First step kept, ``0 <= step < n_steps``, a multiple of ``kin_every``.
+
+    Returns
+    -------
+    Forcing
+    """
+    grid = forcing.grid
+    step = int(step)
+    if not 0 <= step < grid.n_steps or step % forcing.kin_every:
+        raise ValueError(
+            f"forcing_from: step {step} must be in [0, {grid.n_steps}) and a multiple of kin_every = {forcing.kin_every}"
+        )
+    k = step // forcing.kin_every
+    return Forcing(
+        grid=env.RecordGrid(dt=grid.dt, n_steps=grid.n_steps - step, n_fft=grid.n_fft, d_omega=grid.d_omega),
+        force=np.ascontiguousarray(forcing.force[:, step:]),
+        wind=np.ascontiguousarray(forcing.wind[:, step:]),
+        wind_dir=forcing.wind_dir,
+        kin_every=forcing.kin_every,
+        kinematics=np.ascontiguousarray(forcing.kinematics[:, k:]),
     )

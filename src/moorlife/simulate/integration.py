@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from moorlife.simulate.forcing import Forcing
+from moorlife.simulate.initial import InitialState, at_rest
 from moorlife.simulate.kernel import (
     Body,
     Excitation,
@@ -158,6 +159,7 @@ def integrate(
     transient: float,
     q0: np.ndarray | None = None,
     v0: np.ndarray | None = None,
+    start: InitialState | None = None,
     mooring_override: Any | None = None,
     locked: Sequence[int] = (),
 ) -> Record:
@@ -170,7 +172,12 @@ def integrate(
     transient : float
         Seconds discarded at the start.
     q0, v0 : (B, 6), optional
-        Initial displacement and velocity (default: at rest at the origin).
+        Initial displacement and velocity (default: at rest at the origin), with the radiation
+        memory at rest and the rotor filter at its steady state (:func:`~moorlife.simulate.initial.at_rest`).
+    start : InitialState, optional
+        The whole initial state instead of ``q0, v0`` (e.g.
+        :func:`~moorlife.simulate.initial.equilibrium_start`). The lines always start in their
+        static shape at the start's fairlead positions.
     mooring_override : object, optional
         A mooring object with ``init/step/tension`` (tests).
     locked : sequence of int, optional
@@ -190,14 +197,18 @@ def integrate(
     if j0 >= n:
         raise ValueError(f"transient {transient} s leaves nothing of a {n * dt} s record")
     nt = n - j0
-    q = np.zeros((nb, 6)) if q0 is None else np.array(q0, dtype=float).reshape(nb, 6)
-    v = np.zeros((nb, 6)) if v0 is None else np.array(v0, dtype=float).reshape(nb, 6)
+    if start is None:
+        start = at_rest(model, forcing, q0, v0)
+    elif q0 is not None or v0 is not None:
+        raise ValueError("integrate: give either start or q0/v0, not both")
     nr = model.rad_a.shape[0]
-    xr = np.zeros((nb, nr))
     nf = model.filt_a.shape[0]
-    zf = np.zeros((nb, nf))
-    if nf:  # start the filter at its steady state for the initial wind (no start-up kick)
-        zf[:] = -np.linalg.solve(model.filt_a, model.filt_b[:, 0])[None, :] * forcing.wind[:, :1]
+    if start.displacement.shape != (nb, 6) or start.velocity.shape != (nb, 6):
+        raise ValueError(f"integrate: the start's displacement and velocity must be ({nb}, 6)")
+    if start.radiation.shape != (nb, nr) or start.filter.shape != (nb, nf):
+        raise ValueError(f"integrate: the start's radiation and filter states must be ({nb}, {nr}) and ({nb}, {nf})")
+    # the kernels update the state in place: copies, so that the caller's start stays as given
+    q, v, xr, zf = (np.array(a, dtype=float) for a in start)
     ra = _csr(model.rad_a)
     free = _free_dofs(locked)
     held = np.setdiff1d(np.arange(6), free)

@@ -71,6 +71,9 @@ class ModelInputs:
         Sampling of ``kernel``, s.
     line_info : dict
         ``link_diameter`` (m), ``mbs`` (N), ``chain`` of the lines (for fatigue).
+    static_mooring : object or None
+        The quasi-static model of the same lines (a ``moorlife.mooring.QuasiStaticMooring``),
+        for the static equilibria of :mod:`moorlife.simulate.initial`; None: built when needed.
     """
 
     mass: np.ndarray
@@ -106,6 +109,7 @@ class ModelInputs:
     kernel_pairs: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64))
     kernel_dt: float = 0.0
     line_info: Mapping[str, Any] = field(default_factory=dict)
+    static_mooring: Any = None
 
 
 def build_model(**kwargs: Any) -> ModelInputs:
@@ -136,7 +140,17 @@ def build_model(**kwargs: Any) -> ModelInputs:
     kw.setdefault("depth", 200.0)
     kw.setdefault("rho", 1025.0)
     kw.setdefault("gravity", env.G)
-    scalars = ("mooring_kind", "mooring_args", "line_info", "depth", "rho", "gravity", "kernel_dt", "kernel_pairs")
+    scalars = (
+        "mooring_kind",
+        "mooring_args",
+        "static_mooring",
+        "line_info",
+        "depth",
+        "rho",
+        "gravity",
+        "kernel_dt",
+        "kernel_pairs",
+    )
     arrays = {
         k: (np.asarray(v, dtype=complex if k == "excitation" else float) if k not in scalars else v)
         for k, v in kw.items()

@@ -10,7 +10,8 @@ from typing import Any
 import numpy as np
 
 from moorlife.settings import SimulationSettings
-from moorlife.simulate.kernel import _fairlead_motion, _moor_generalised
+from moorlife.simulate.initial import static_offsets
+from moorlife.simulate.kernel import _moor_generalised
 from moorlife.simulate.linear import radiation_impedance
 from moorlife.simulate.model import ModelInputs, build_model
 
@@ -241,7 +242,8 @@ def attach_mooring(
     ModelInputs
         With ``mooring_kind``, ``mooring_args``, ``fairleads``, ``line_info`` and the
         ``static_load`` that trims the platform to even keel at its design draft with the
-        lines at rest (the ballast adjustment of each mooring system).
+        lines at rest (the ballast adjustment of each mooring system), and the quasi-static
+        model of the same lines as ``static_mooring`` (the static solves of the start).
     """
     from moorlife import mooring as moor
 
@@ -257,12 +259,14 @@ def attach_mooring(
     rest = _rest_mooring_load(proto, fair)
     static = np.zeros(6)
     static[[2, 3, 4]] = -rest[[2, 3, 4]]
+    statics = proto if kind == "quasistatic" else moor.make_mooring("quasistatic", props, layout, mooring_cfg, batch=1)
     return replace(
         model,
         mooring_kind=kind,
         mooring_args=(props, layout, mooring_cfg, proto),
         fairleads=fair,
         static_load=static,
+        static_mooring=statics,
         line_info={"link_diameter": props.link_diameter, "mbs": props.MBS, "chain": props.chain},
     )
 
@@ -274,7 +278,8 @@ def static_equilibrium(
 
     Solves ``load + static_load + F_moor(q) - K q = 0`` by Newton iterations with a
     finite-difference Jacobian, the mooring force from the quasi-static catenary of the model's
-    lines (``"linear"`` models use ``mooring_stiffness``).
+    lines (``"linear"`` models use ``mooring_stiffness``); one case of
+    :func:`moorlife.simulate.initial.static_offsets`.
 
     Parameters
     ----------
@@ -289,34 +294,5 @@ def static_equilibrium(
     tension : (3,)
         Fairlead tensions there, N (NaN for a linear model).
     """
-    load = np.asarray(load, dtype=float)
-    if model.mooring_kind == "linear":
-        q = np.linalg.solve(model.stiffness + model.mooring_stiffness, load + model.static_load)
-        return q, np.full(3, np.nan)
-    from moorlife import mooring as moor
-
-    props, layout, cfg, _ = model.mooring_args
-    qs = moor.make_mooring("quasistatic", props, layout, cfg, batch=7)
-    fair = np.ascontiguousarray(model.fairleads)
-
-    def residual(qb: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        r = np.empty((qb.shape[0], 3, 3))
-        vz = np.zeros_like(r)
-        _fairlead_motion(qb, np.zeros_like(qb), fair, r, vz)
-        st = qs.init(r)
-        f6 = np.zeros((qb.shape[0], 6))
-        _moor_generalised(qb, np.array(qs.forces(st), dtype=float), fair, f6)
-        return load + model.static_load + f6 - qb @ model.stiffness.T, np.array(qs.tension(st))
-
-    q = np.zeros(6)
-    h = np.array([1e-3, 1e-3, 1e-3, 1e-5, 1e-5, 1e-5])
-    for _ in range(max_iter):
-        qb = np.vstack([q, q + np.diag(h)])
-        res, ten = residual(qb)
-        jac = ((res[1:] - res[0]) / h[:, None]).T
-        dq = np.linalg.lstsq(jac, -res[0], rcond=None)[0]
-        q = q + dq
-        if np.all(np.abs(dq) < tol * np.maximum(1.0, np.abs(q))):
-            break
-    res, ten = residual(np.vstack([q] * 7))
-    return q, ten[0]
+    eq = static_offsets(model, np.asarray(load, dtype=float).reshape(1, 6), tol=tol, max_iter=max_iter)
+    return eq.displacement[0], eq.tension[0]
