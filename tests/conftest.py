@@ -1,8 +1,9 @@
 """Shared fixtures: the study configuration, read and validated once per session.
 
-Under pytest-xdist (``make test`` runs ``-n 2 --dist loadgroup``) every test file is one group,
-so a module-scoped fixture is built once, and the files that use the session ``study`` (the tiny
-DAG, built once per worker) are one group together, so the tiny DAG is built once in all.
+Under pytest-xdist (``make test`` runs ``-n 2 --dist loadfile``: the tests of one file on one
+worker, so a module-scoped fixture is built once) the session ``study`` is built once for all
+workers: the first worker that needs it builds it under a file lock in the run's shared
+temporary root, the others wait for it and read the same copy.
 
 ``study_config`` is ``config/config.yaml``; ``quick_config`` adds ``config/quick.yaml`` and
 ``tiny_config`` adds ``tests/data/tiny.yaml`` on top (the workflow tests' overlays), each
@@ -14,6 +15,8 @@ from __future__ import annotations
 
 import copy
 import functools
+import os
+import shutil
 from pathlib import Path
 from typing import Any
 
@@ -24,18 +27,6 @@ SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 CONFIG = ROOT / "config" / "config.yaml"
 QUICK = ROOT / "config" / "quick.yaml"
 TINY = ROOT / "tests" / "data" / "tiny.yaml"
-
-
-#: Test files that use the session ``study``: one xdist group, one worker, one build of the DAG.
-STUDY_GROUP = "study"
-
-
-def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    """Give every test its xdist group: its file, or ``study`` for every file that uses it."""
-    study_files = {item.path for item in items if "study" in getattr(item, "fixturenames", ())}
-    for item in items:
-        group = STUDY_GROUP if item.path in study_files else item.path.stem
-        item.add_marker(pytest.mark.xdist_group(group))
 
 
 @functools.cache
@@ -77,9 +68,23 @@ def study_config_factory():
 @pytest.fixture(scope="session")
 def study(tmp_path_factory) -> Path:
     """The tiny study (``config/quick.yaml`` + ``tests/data/tiny.yaml``), the full DAG built once
-    in a temporary copy of the repo; tests that change it copy it first (``clone_study``)."""
+    in a temporary copy of the repo, shared by every xdist worker; tests that change it copy it
+    first (``clone_study``)."""
+    import fcntl
+
     from test_workflow import copy_repo, smk
 
-    work = copy_repo(tmp_path_factory.mktemp("study"))
-    smk(work)
+    root = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        root = root.parent  # the run's root, shared by the workers
+    work, built = root / "study", root / "study.built"
+    with open(root / "study.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not built.exists():
+            if work.exists():
+                shutil.rmtree(work)
+            work.mkdir()
+            copy_repo(work)
+            smk(work)
+            built.touch()
     return work

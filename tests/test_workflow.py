@@ -73,7 +73,8 @@ def stores(workdir: Path) -> dict[str, float]:
 
 
 def clone_study(study: Path, dst: Path) -> Path:
-    shutil.copytree(study, dst, symlinks=True, dirs_exist_ok=True)
+    # not Snakemake's locks: another xdist worker may be running snakemake in the shared study
+    shutil.copytree(study, dst, symlinks=True, dirs_exist_ok=True, ignore=shutil.ignore_patterns("locks"))
     return dst
 
 
