@@ -28,9 +28,10 @@ quick: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --report report-quick.html --configfile config/quick.yaml
 
 ## test: the lint, then the whole test suite (unit, peer and workflow tests), on $(CORES) pytest-xdist
-## workers, one test file per worker at a time; the tiny study is built once (tests/conftest.py)
+## workers, one test file per worker at a time, longest first; the tiny study is built once
+## (tests/conftest.py)
 test: lint
-	$(BIN)/python -m pytest -q -n $(CORES) --dist loadfile
+	$(BIN)/python -m pytest -q -n $(CORES) --dist loadfile --no-loadscope-reorder
 
 ## test-cluster: the tiny workflow by both SLURM routes (the profile; a dask-jobqueue cluster),
 ## compared bit for bit with a local run; starts a one-node SLURM cluster if none answers

@@ -29,6 +29,30 @@ QUICK = ROOT / "config" / "quick.yaml"
 TINY = ROOT / "tests" / "data" / "tiny.yaml"
 
 
+#: Files run first under xdist (``--no-loadscope-reorder`` keeps this order): the one that builds
+#: the tiny study, then files that need no study on the other worker while it builds, then the
+#: other study files; the rest follow in their usual order. The longest first keeps the two
+#: workers busy to the end (measured idle: the study 158 s, the numba cache test 47 s).
+FIRST_FILES = (
+    "test_workflow",
+    "test_numba_cache",
+    "test_hydro",
+    "test_simulate",
+    "test_mooring_dynamic",
+    "test_truth",
+    "test_rounds",
+    "test_bad_inputs",
+    "test_parallel",
+    "test_lifecycle",
+)
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Order the files as :data:`FIRST_FILES`, then the rest as collected (a stable sort)."""
+    rank = {name: k for k, name in enumerate(FIRST_FILES)}
+    items.sort(key=lambda item: rank.get(item.path.stem, len(rank)))
+
+
 @functools.cache
 def _study_config(*overlays: Path) -> dict[str, Any]:
     from moorlife.io import read_study_config

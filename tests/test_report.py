@@ -74,19 +74,19 @@ def test_write_overview_reads_the_outputs(tmp_path):
 
 
 @pytest.mark.parametrize("name", ["workflow.rst", "workflow_pending.rst"])
-def test_report_descriptions_render(name, tmp_path, monkeypatch):
-    """The global descriptions as Snakemake renders them: Jinja with the config, then docutils."""
+@pytest.mark.parametrize("rounds", [0, 2])
+def test_report_descriptions_render(name, rounds, tmp_path, monkeypatch, study_config):
+    """The global descriptions as Snakemake renders them: Jinja with the validated config (its
+    defaults filled in, as Snakemake's config is at parse time), then docutils."""
     from pathlib import Path
 
     import jinja2
 
     text = (Path(__file__).resolve().parents[1] / "workflow" / "report" / name).read_text()
-    cfg = {
-        "lifecycle": {"recommendation": {"curves": ["sn", "tn"]}},
-        "fatigue": {"design_life": 25.0},
-        "hindcast": {"start": "1985", "end": "2015"},
-        "selection": {"n_train": 1000},
-    }
+    cfg = study_config
+    cfg["lifecycle"]["recommendation"]["curves"] = ["sn", "tn"]
+    cfg["lifecycle"]["adaptive"].update(rounds=rounds, per_round=100)
+    cfg["fatigue"]["design_life"] = 25.0
     env = jinja2.Environment(undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True)
     rendered = env.from_string(text).render(snakemake=type("S", (), {"config": cfg}), categories={}, files=[])
     rendered += (
@@ -98,5 +98,6 @@ def test_report_descriptions_render(name, tmp_path, monkeypatch):
     html = _html(rendered)
     if name == "workflow.rst":
         assert "sn, tn" in html and "25.0" in html and "Recommended mooring system: MS3" in html
+        assert ("2 adaptive round(s) of 100 per system" in html) == (rounds == 2)
     else:
         assert "has not run yet" in html
