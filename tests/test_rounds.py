@@ -3,12 +3,8 @@ rounds end to end on the tiny study (conftest.py ``study``: one round of 3 state
 
 from __future__ import annotations
 
-import os
 import re
 import shutil
-import signal
-import subprocess
-import time
 from pathlib import Path
 
 import numpy as np
@@ -25,16 +21,10 @@ SETTINGS = lifecycle.RBFSettings.from_config({"outputs": ["surge_mpm", "tension_
 
 
 def _hindcast(n: int = 2000, seed: int = 0) -> xr.Dataset:
-    rng = np.random.default_rng(seed)
-    data = {
-        "wind_speed": rng.uniform(0, 25, n),
-        "wind_dir": rng.uniform(0, 360, n),
-        "hs": rng.uniform(0.3, 6, n),
-        "tp": rng.uniform(4, 18, n),
-        "wave_dir": rng.uniform(0, 360, n),
-    }
-    t = np.arange(n).astype("timedelta64[h]") + np.datetime64("2000-01-01T00")
-    return xr.Dataset({k: ("time", v, names.attrs_for(k)) for k, v in data.items()}, coords={"time": t})
+    """test_lifecycle's random hindcast, 2,000 hours by default."""
+    from test_lifecycle import _hindcast as lifecycle_hindcast
+
+    return lifecycle_hindcast(n, seed)
 
 
 def _cases(hc: xr.Dataset, n_train: int = 60, n_val: int = 20, seed: int = 1) -> xr.Dataset:
@@ -259,20 +249,11 @@ def test_rounds_end_to_end(study):
     assert (study / "results/report/overview.rst").exists()
 
 
-def _done_batches(part: Path) -> int:
-    try:
-        import zarr
-
-        return int(np.asarray(zarr.open_group(str(part), mode="r")["_batch_done"][:]).sum())
-    except Exception:
-        return 0
-
-
 @pytest.mark.workflow
 def test_kill_inside_a_round_then_resume_is_bit_identical(study, tmp_path):
     """SIGKILL the simulation of round 1 mid-fan-out (one worker), resume with two: the bits of
     the study's store, the finished sea states reused and the picks not recomputed."""
-    from test_workflow import OVERLAYS, SNAKEMAKE, clone_study, smk
+    from test_workflow import OVERLAYS, SNAKEMAKE, clone_study, kill_during_fanout, smk
 
     work = clone_study(study, tmp_path / "k")
     target = "results/MS1/rounds/simulations_1.zarr"
@@ -280,20 +261,10 @@ def test_kill_inside_a_round_then_resume_is_bit_identical(study, tmp_path):
     (work / "slow.yaml").write_text("simulation:\n  batch_size: 1\n")
     overlays = [*OVERLAYS, "slow.yaml"]
     part = mio.partial_path(work / target)
-    env = {**os.environ, "PYTHONWARNINGS": "ignore"}
-    env.pop("DASK_SCHEDULER_ADDRESS", None)
     # one worker: the 3 batches run one after the other (a sea state takes about a second here)
     cmd = [SNAKEMAKE, "--cores", "1", target, "--configfile", *overlays]
-    proc = subprocess.Popen(
-        cmd, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True, env=env
-    )
-    deadline = time.time() + 600
-    while _done_batches(part) < 1 and proc.poll() is None and time.time() < deadline:
-        time.sleep(0.01)
-    os.killpg(proc.pid, signal.SIGKILL)
-    proc.wait()
+    n_before = kill_during_fanout(work, cmd, part, 1, poll=0.01)
     assert not (work / target).exists(), "the run was not killed during the fan-out"
-    n_before = _done_batches(part)
     assert 1 <= n_before < 3
     smk(work, "--unlock", overlays=overlays)
     res = smk(work, target, overlays=overlays)

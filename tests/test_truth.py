@@ -7,19 +7,15 @@ a training state, and the other tests read or copy it.
 
 from __future__ import annotations
 
-import os
 import re
 import shutil
-import signal
-import subprocess
-import time
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
-from test_workflow import OVERLAYS, SNAKEMAKE, clone_study, copy_repo, smk
+from test_workflow import OVERLAYS, SNAKEMAKE, clone_study, copy_repo, kill_during_fanout, smk
 
 from moorlife import io as mio
 from moorlife import names, selection
@@ -445,15 +441,6 @@ def test_truth_hour_equal_to_training_case_differs_only_in_stream(truth_study, t
     assert not np.array_equal(out["case"]["damage_sn"].values, out["truth"]["damage_sn"].values)
 
 
-def _done_batches(part: Path) -> int:
-    try:
-        import zarr
-
-        return int(np.asarray(zarr.open_group(str(part), mode="r")["_batch_done"][:]).sum())
-    except Exception:
-        return 0
-
-
 @pytest.mark.workflow
 def test_truth_kill_and_resume_is_bit_identical(truth_study, tmp_path):
     """The truth rule killed during its fan-out, resumed with one worker: bit for bit.
@@ -477,18 +464,8 @@ def test_truth_kill_and_resume_is_bit_identical(truth_study, tmp_path):
     overlays = _ov("sub.yaml")
     part = mio.partial_path(work / target)
     cmd = [SNAKEMAKE, "--cores", "2", target, "--configfile", *overlays]
-    env = {**os.environ, "PYTHONWARNINGS": "ignore"}
-    env.pop("DASK_SCHEDULER_ADDRESS", None)
-    proc = subprocess.Popen(
-        cmd, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True, env=env
-    )
-    deadline = time.time() + 600
-    while _done_batches(part) < 3 and proc.poll() is None and time.time() < deadline:
-        time.sleep(0.02)
-    os.killpg(proc.pid, signal.SIGKILL)
-    proc.wait()
+    n_before = kill_during_fanout(work, cmd, part, 3)
     assert not (work / target).exists(), "the run was not killed during the fan-out"
-    n_before = _done_batches(part)
     assert 3 <= n_before < len(hours)
     smk(work, "--unlock", overlays=overlays)
     smk(work, target, overlays=overlays, cores=1)

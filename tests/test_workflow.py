@@ -115,13 +115,31 @@ def _furthest(ms: str, work: Path) -> str:
     raise AssertionError(f"no per-system output for {ms}")
 
 
-def _done_batches(part: Path) -> int:
+def done_batches(part: Path) -> int:
+    """Batches finished in a partial store (0 while it does not exist yet)."""
     try:
         import zarr
 
         return int(np.asarray(zarr.open_group(str(part), mode="r")["_batch_done"][:]).sum())
     except Exception:
         return 0
+
+
+def kill_during_fanout(
+    work: Path, cmd: list[str], part: Path, n: int, *, log: Path | None = None, poll: float = 0.02
+) -> int:
+    """Run ``cmd`` (snakemake) in ``work``, SIGKILL its process group once the partial store
+    ``part`` holds ``n`` finished batches (or the run ended, or 600 s passed); the batches done."""
+    env = {**os.environ, "PYTHONWARNINGS": "ignore"}
+    env.pop("DASK_SCHEDULER_ADDRESS", None)
+    with open(log, "w") if log is not None else open(os.devnull, "w") as out:
+        proc = subprocess.Popen(cmd, cwd=work, stdout=out, stderr=out, start_new_session=True, env=env)
+        deadline = time.time() + 600
+        while done_batches(part) < n and proc.poll() is None and time.time() < deadline:
+            time.sleep(poll)
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+    return done_batches(part)
 
 
 def _identical(a: Path, b: Path) -> None:
@@ -147,17 +165,8 @@ def test_single_system_target_killed_resumed_with_one_worker(study, tmp_path):
     overlays = [*OVERLAYS, "slow.yaml"]
     part = mio.partial_path(work / sims)
     cmd = [SNAKEMAKE, "--cores", "2", target, "--configfile", *overlays]
-    env = {**os.environ, "PYTHONWARNINGS": "ignore"}
-    env.pop("DASK_SCHEDULER_ADDRESS", None)
-    with open(tmp_path / "killed.log", "w") as out:
-        proc = subprocess.Popen(cmd, cwd=work, stdout=out, stderr=out, start_new_session=True, env=env)
-        deadline = time.time() + 600
-        while _done_batches(part) < 2 and proc.poll() is None and time.time() < deadline:
-            time.sleep(0.02)
-        os.killpg(proc.pid, signal.SIGKILL)
-        proc.wait()
+    n_before = kill_during_fanout(work, cmd, part, 2, log=tmp_path / "killed.log")
     assert not (work / sims).exists(), "the run was not killed during the fan-out"
-    n_before = _done_batches(part)
     assert n_before >= 2
     smk(work, "--unlock", overlays=overlays)
     res = smk(work, target, overlays=overlays, cores=1)
