@@ -128,13 +128,80 @@ def test_first_pick_is_the_least_sure_allowed_hour(round1):
     pts = np.column_stack([hc[v].values for v in names.METOCEAN_VARS])
     x = pts[cases["hindcast_index"].values[train]]
     model = lifecycle.fit_outputs(x, y, cols, SETTINGS)
-    ind, dist = lifecycle.error_indicator(model, pts, np.where(model.log_output, 1.0, y.std(axis=0)))
+    loo = lifecycle.loo_errors_in_units(model, y, cols)
+    ind, dist = lifecycle.error_indicator(model, pts, y.std(axis=0), loo, population=True)
     ind[cases["hindcast_index"].values] = -1.0
     h = picks["hindcast_index"].values
     assert h[0] == int(np.argmax(ind))
     np.testing.assert_array_equal(picks["error_indicator"].values, ind[h])
     np.testing.assert_array_equal(picks["nearest_train_distance"].values, dist[h])
     assert (ind[h] > np.median(ind[ind >= 0])).all(), "every pick is among the less sure half of the hours"
+
+
+def test_indicator_weighs_damage_errors_in_damage_units():
+    """A log10 damage fit is worst, in log10 units, where the damage is negligible; in damage units
+    (what the life-cycle sum and the per-hour r weigh) it is worst where the damage is large.
+
+    Constructed: 1-D-like damage ``1e-9`` for W < 10 m/s with a wild factor-10 scatter, and a
+    smooth but steep ``1e-4 exp(W / 3)`` above; the unit-weighted indicator must point at the
+    steep, damaging side, the log-weighted one mostly at the negligible scatter and the jump.
+    """
+    rng = np.random.default_rng(3)
+    n = 120
+    x = np.column_stack(
+        [
+            rng.uniform(0, 25, n),
+            rng.uniform(0, 360, n),
+            rng.uniform(0.5, 4, n),
+            rng.uniform(4, 14, n),
+            rng.uniform(0, 360, n),
+        ]
+    )
+    w = x[:, 0]
+    y = np.where(w < 10, 1e-9 * 10 ** rng.uniform(-1, 1, n), 1e-4 * np.exp(w / 3.0))[:, None]
+    cols = [("damage_sn", "M1")]
+    model = lifecycle.fit_outputs(x, y, cols, SETTINGS)
+    loo = lifecycle.loo_errors_in_units(model, y, cols)
+    worst_units = int(np.argmax(np.abs(loo[:, 0])))
+    worst_log = int(np.argmax(np.abs(model.loo_error[:, 0])))
+    assert w[worst_units] >= 10 and w[worst_log] < 10
+    grid = np.column_stack(
+        [rng.uniform(0, 25, 2000), rng.uniform(0, 360, 2000), rng.uniform(0.5, 4, 2000), rng.uniform(4, 14, 2000)]
+        + [rng.uniform(0, 360, 2000)]
+    )
+    ind_units, _ = lifecycle.error_indicator(model, grid, y.std(axis=0), loo)
+    ind_log, _ = lifecycle.error_indicator(model, grid, [1.0])
+    top = 50  # the hours a round of 50 would draw from
+
+    def damage(rows):
+        g = grid[rows, 0]
+        return np.where(g < 10, 1e-9, 1e-4 * np.exp(g / 3.0))
+
+    assert (grid[np.argsort(-ind_units)[:top], 0] >= 10).mean() > 0.9
+    assert np.median(damage(np.argsort(-ind_units)[:top])) > 100 * np.median(damage(np.argsort(-ind_log)[:top]))
+
+
+def test_population_weighs_errors_by_the_hours_they_affect():
+    """Equal leave-one-out errors everywhere: with ``population`` the indicator is largest where
+    the hours crowd (the hindcast's calm, common states), without it it ignores them."""
+    rng = np.random.default_rng(5)
+    m = 80
+    x = np.column_stack(
+        [rng.uniform(0, 25, m), rng.uniform(0, 360, m), rng.uniform(0.5, 4, m), rng.uniform(4, 14, m)]
+        + [rng.uniform(0, 360, m)]
+    )
+    cols = [("surge_mpm", None)]
+    model = lifecycle.fit_outputs(x, (1.0 + x[:, 0])[:, None], cols, SETTINGS)
+    loo = np.ones((m, 1))
+    crowd = np.column_stack([rng.normal(5, 1, 3000), rng.normal(270, 10, 3000), rng.normal(1.5, 0.2, 3000)])
+    crowd = np.column_stack([crowd, rng.normal(8, 0.5, 3000), rng.normal(280, 10, 3000)])
+    hours = np.vstack([crowd, x[:40] + 0.3])  # a crowd of 3,000 calm hours and 40 hours spread out
+    with_pop, _ = lifecycle.error_indicator(model, hours, [1.0], loo, population=True)
+    without, dist = lifecycle.error_indicator(model, hours, [1.0], loo)
+    top = np.argsort(-with_pop)[:20]
+    assert (top < 3000).all(), "the picks go to the crowd when the errors are equal"
+    np.testing.assert_allclose(without / without.max(), dist / dist.max())  # without: the distance alone
+    assert with_pop[:3000].mean() / with_pop[3000:].mean() > without[:3000].mean() / without[3000:].mean()
 
 
 def test_picks_do_not_depend_on_the_thread_count(round1):

@@ -50,7 +50,13 @@ from moorlife.lifecycle.damage import (
     life_damage,
     recommend,
 )
-from moorlife.lifecycle.fit import Reconstruction, fit_outputs, predict_outputs, validation_metrics
+from moorlife.lifecycle.fit import (
+    Reconstruction,
+    fit_outputs,
+    loo_errors_in_units,
+    predict_outputs,
+    validation_metrics,
+)
 from moorlife.lifecycle.outputs import (
     DEFAULT_OUTPUTS,
     output_columns,
@@ -91,6 +97,7 @@ __all__ = [
     "difference_pct",
     "recommend",
     "error_indicator",
+    "loo_errors_in_units",
     "suggest_states",
     "life_band",
     "reconstruct_lifecycle",

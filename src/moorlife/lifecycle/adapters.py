@@ -8,7 +8,7 @@ compares both.
 from __future__ import annotations
 
 import logging
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -25,7 +25,7 @@ from moorlife.lifecycle.damage import (
     discrete_damage,
     life_damage,
 )
-from moorlife.lifecycle.fit import Reconstruction, fit_outputs, predict_outputs, validation_metrics
+from moorlife.lifecycle.fit import Reconstruction, fit_outputs, loo_errors_in_units, predict_outputs, validation_metrics
 from moorlife.lifecycle.outputs import (
     _label,
     output_columns,
@@ -136,10 +136,17 @@ def _damage_vars(out: xr.Dataset, n_hours: int, fs: fatigue.FatigueSettings) -> 
 
 
 def _uncertainty_vars(
-    out: xr.Dataset, model: Reconstruction, hp: np.ndarray, scale: np.ndarray, n_suggest: int
+    out: xr.Dataset,
+    model: Reconstruction,
+    hp: np.ndarray,
+    y_train: np.ndarray,
+    cols: Sequence[tuple[str, str | None]],
+    n_suggest: int,
 ) -> xr.Dataset:
-    """Error indicator per hour and the adaptive-selection suggestions."""
-    ind, dist = error_indicator(model, hp, scale)
+    """Error indicator per hour (leave-one-out errors in units) and the adaptive-selection suggestions."""
+    ind, dist = error_indicator(
+        model, hp, np.std(y_train, axis=0), loo_errors_in_units(model, y_train, cols), population=True
+    )
     out["nearest_distance"] = (names.TIME, dist, _a("normalised distance to the nearest training state"))
     out["error_indicator"] = (names.TIME, ind, _a("LOO error of the nearest training state x relative distance"))
     picks = suggest_states(model, hp, ind, n_suggest, distance=dist)
@@ -272,8 +279,7 @@ def reconstruct_lifecycle(
                 out[f"validation_{k}_other_transform"] = ("output", arr, _a(text))
     n_hours = hindcast.sizes[names.TIME]
     out = _damage_vars(out, n_hours, fatigue.fatigue_settings(fatigue_cfg))
-    scale = np.where(model.log_output, 1.0, np.std(y[train], axis=0))
-    out = _uncertainty_vars(out, model, hp, scale, n_suggest)
+    out = _uncertainty_vars(out, model, hp, y[train], cols, n_suggest)
     out.attrs.update(
         {
             "n_hours": int(n_hours),

@@ -36,7 +36,7 @@ from moorlife.lifecycle.settings import RBFSettings
 from moorlife.lifecycle.spaces import ThrustCurve, space_inputs
 from moorlife.space import Space, direction_mask, embed, fit_space
 
-__all__ = ["Reconstruction", "validation_metrics", "fit_outputs", "predict_outputs"]
+__all__ = ["Reconstruction", "validation_metrics", "fit_outputs", "predict_outputs", "loo_errors_in_units"]
 
 log = logging.getLogger("moorlife.lifecycle")
 
@@ -257,13 +257,44 @@ def _floored(column: np.ndarray, col: tuple[str, str | None] | None = None) -> n
     return out
 
 
-def _rmse_units(values: np.ndarray, loo: np.ndarray, logs: np.ndarray, factor: np.ndarray) -> np.ndarray:
-    """Leave-one-out RMSE of every column in its own units (log columns back-transformed)."""
+def _errors_units(values: np.ndarray, loo: np.ndarray, logs: np.ndarray, factor: np.ndarray) -> np.ndarray:
+    """Leave-one-out residuals of every column in its own units (log columns back-transformed)."""
     e = loo.copy()
     if logs.any():
         ly = np.log10(values[:, logs])
         e[:, logs] = rbf.loo_error_in_units(values[:, logs], ly, loo[:, logs], factor[logs])
+    return e
+
+
+def _rmse_units(values: np.ndarray, loo: np.ndarray, logs: np.ndarray, factor: np.ndarray) -> np.ndarray:
+    """Leave-one-out RMSE of every column in its own units (log columns back-transformed)."""
+    e = _errors_units(values, loo, logs, factor)
     return np.sqrt(np.mean(e * e, axis=0))
+
+
+def loo_errors_in_units(
+    model: Reconstruction, values: npt.ArrayLike, cols: Sequence[tuple[str, str | None]]
+) -> np.ndarray:
+    """Leave-one-out residuals of a fitted :class:`Reconstruction` in each output's own units.
+
+    Parameters
+    ----------
+    model : Reconstruction
+    values : array_like, shape (m, n_out)
+        The training values the model was fitted on, in their units.
+    cols : sequence of (name, line)
+        The output columns (damage columns are floored as for the fit before their ``log10``).
+
+    Returns
+    -------
+    numpy.ndarray, shape (m, n_out)
+        ``y_k`` minus the back-transformed prediction at state ``k`` of the fit without ``k``.
+    """
+    y = np.array(values, dtype=float)
+    for j in np.flatnonzero(model.log_output):
+        if cols[j][0].startswith("damage"):
+            y[:, j] = _floored(y[:, j])
+    return _errors_units(y, model.loo_error, model.log_output, model.log_factor)
 
 
 def _combine(

@@ -10,20 +10,40 @@ from moorlife import rbf
 __all__ = ["error_indicator", "suggest_states", "life_band"]
 
 
-def error_indicator(model: rbf.RBFModel, points: npt.ArrayLike, scale: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
-    """Where the RBF is least certain: nearest training state's LOO error x distance.
+def error_indicator(
+    model: rbf.RBFModel,
+    points: npt.ArrayLike,
+    scale: npt.ArrayLike,
+    loo: npt.ArrayLike | None = None,
+    population: bool = False,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Where the reconstruction is least certain: nearest training state's LOO error x distance.
 
-    ``indicator = max_k |e_k(nearest)| / scale_k x (d_nearest / d_typical)``, with ``e``
-    Rippa's leave-one-out residuals (:attr:`RBFModel.loo_error`), ``scale`` a per-output
-    normaliser (e.g. the standard deviation of the training values) and ``d_typical`` the
-    median nearest-neighbour spacing of the training states. High where the surface varies
-    fast (large LOO error) and training states are sparse.
+    ``indicator = max_k |e_k(nearest)| / scale_k x (d_nearest / d_typical)``, with ``e`` the
+    leave-one-out residuals of the training states, ``scale`` a per-output normaliser and
+    ``d_typical`` the median nearest-neighbour spacing of the training states. High where the
+    surface varies fast (large LOO error) and training states are sparse.
+
+    The residuals should be in each output's own units (``loo``, from
+    :func:`moorlife.lifecycle.loo_errors_in_units`) with ``scale`` the standard deviation of the
+    training values: then a damage error counts by its size in damage, which is what the
+    life-cycle sum and the per-hour agreement weigh. In ``log10`` units (the model's own
+    residuals, the default when ``loo`` is omitted) every calm state with a tiny, badly
+    interpolated damage would look as uncertain as the states that carry the damage.
 
     Parameters
     ----------
-    model : moorlife.rbf.RBFModel
+    model : moorlife.rbf.RBFModel or moorlife.lifecycle.Reconstruction
+        Its ``centres``, ``space`` and (when ``loo`` is omitted) ``loo_error``.
     points : array_like, shape (n, 5)
     scale : array_like, shape (k,)
+    loo : array_like, shape (m, k), optional
+        Leave-one-out residuals of the training states (default ``model.loo_error``).
+    population : bool
+        Weigh each training state's error by the hours of ``points`` whose nearest training
+        state it is (over their mean): the error mass of its cell, which is what the
+        life-cycle sum and the per-hour agreement over the hindcast feel. Without it the
+        largest errors sit at the rare extremes of the cloud, where few hours are.
 
     Returns
     -------
@@ -35,8 +55,12 @@ def error_indicator(model: rbf.RBFModel, points: npt.ArrayLike, scale: npt.Array
     typical = _typical_spacing(model)
     s = np.asarray(scale, dtype=float)
     s = np.where(s > 0, s, 1.0)
-    loo = np.max(np.abs(model.loo_error) / s, axis=1)  # (m,)
-    return loo[idx] * dist / typical, dist
+    e = np.asarray(model.loo_error if loo is None else loo, dtype=float)
+    worst = np.max(np.abs(e) / s, axis=1)  # (m,)
+    if population:
+        counts = np.bincount(idx, minlength=worst.size).astype(float)
+        worst = worst * counts / counts.mean()
+    return worst[idx] * dist / typical, dist
 
 
 def _typical_spacing(model: rbf.RBFModel) -> float:

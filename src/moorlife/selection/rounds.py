@@ -88,6 +88,7 @@ def pick_hours(
     scale: np.ndarray,
     n: int,
     exclude: np.ndarray,
+    loo: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The ``n`` hours where the fitted reconstruction is least sure, none of them excluded.
 
@@ -104,6 +105,9 @@ def pick_hours(
         Hours to pick.
     exclude : numpy.ndarray of bool, shape (n_hours,)
         Hours that may not be picked (simulated or validation hours).
+    loo : numpy.ndarray, shape (m, k), optional
+        Leave-one-out residuals of the training states in the outputs' units
+        (:func:`moorlife.lifecycle.loo_errors_in_units`); default the model's own.
 
     Returns
     -------
@@ -119,7 +123,7 @@ def pick_hours(
         If fewer than ``n`` hours can be picked (every other hour excluded, or on a training
         state, or of zero indicator).
     """
-    ind, dist = lifecycle.error_indicator(model, points, scale)
+    ind, dist = lifecycle.error_indicator(model, points, scale, loo, population=True)
     ind = np.where(np.asarray(exclude, dtype=bool), 0.0, ind)  # a zero score is never picked
     picks = lifecycle.suggest_states(model, points, ind, int(n), distance=dist)
     if picks.size < int(n):
@@ -225,14 +229,15 @@ def pick_round(
     x = lifecycle._points(cs, dim)[train]
     lo, span = lifecycle._selection_scaling(cases)
     model = lifecycle.fit_outputs(x, y, cols, settings, lo=lo, span=span, thrust=thrust)
-    scale = np.where(model.log_output, 1.0, np.std(y, axis=0))
+    scale = np.std(y, axis=0)
+    loo = lifecycle.loo_errors_in_units(model, y, cols)
 
     hp = hindcast_points(hindcast, source="hindcast")
     known = np.asarray(cases["hindcast_index"].values, dtype=np.int64)  # every simulated or validation hour
     exclude = np.zeros(hp.shape[0], dtype=bool)
     exclude[known] = True
     exclude |= _same_points(hp, hp[known])
-    picks, ind, dist = pick_hours(model, hp, scale, n, exclude)
+    picks, ind, dist = pick_hours(model, hp, scale, n, exclude, loo)
     log.info(
         "adaptive round %d: fitted on %d training states (%d outputs), picked %d hours; indicator %.3g .. %.3g",
         number,
