@@ -1,0 +1,282 @@
+"""Paper-scale measurement of the reconstruction (issue 22): settings side by side, same simulations.
+
+    python validation/reconstruction.py --results results --systems MS1 MS2 MS3 MS4 MS5 MS6 \\
+        --variant paper= --variant new=validation/overlays/new_default.yaml > tables.md
+
+Each ``--variant NAME=OVERLAY[,OVERLAY...]`` is ``config/config.yaml`` plus those overlays (empty:
+the config as it is), validated as Snakemake validates it. For every system with a
+``simulations.zarr`` under ``--results``, every variant is fitted on the same simulations of the
+study, in this process, and measured:
+
+- on the 225 validation states: r per output (``lifecycle.validation_metrics``);
+- on the truth window, where ``results/{ms}/truth.zarr`` exists: per-hour r of every output, the
+  window's damage per line and curve against the truth's (``moorlife.truth.compare_window``, the
+  arithmetic of the ``truth_compare`` rule), and the bias test below;
+- the CPU time of the fit and the prediction of every hour.
+
+Adaptive variants (``lifecycle.adaptive.rounds > 0``) are made at equal cost from the study's own
+simulations: the first ``n_train - rounds x per_round`` MDA states (maximum dissimilarity is
+greedy, so they are exactly the states an MDA of that size picks, with the same case ids and
+phases), then the rounds, picked by ``moorlife.selection.rounds.pick_round`` and simulated by the
+simulate stage itself into ``--work/{ms}/{variant}/`` (resumable; reused when present). The
+validation states are the study's, so every variant is measured on the same 225 realisations.
+
+The bias test: for each line and curve, ``z = (reconstruction - truth) / sd``, with ``sd`` the seed
+scatter of the truth's window sum (``seed_sum_std_pct``, from the second-seed hours). ``|z| <= 2``
+is "within the seed noise". Systematic bias shows as z of one sign on every line.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+import xarray as xr
+
+ROOT = Path(__file__).resolve().parents[1]
+DAMAGE = ("damage_sn", "damage_tn")
+
+
+def study(overlays: list[str]) -> dict[str, Any]:
+    """config.yaml + overlays, validated and filled as the Snakefile does."""
+    from moorlife.io import read_yaml
+    from moorlife.stages.check import check_study, read_configs
+
+    cfg = read_configs(str(ROOT / "config" / "config.yaml"), overlays)
+    return check_study(cfg, read_yaml(ROOT / "workflow" / "schemas" / "config.schema.yaml"), "config").config
+
+
+def _open(path: Path) -> xr.Dataset | None:
+    from moorlife.io import open_zarr
+
+    return open_zarr(path) if path.exists() else None
+
+
+def adaptive_training(
+    cfg: dict[str, Any], ms: str, results: Path, work: Path, cases: xr.Dataset, sims: xr.Dataset, hindcast: xr.Dataset
+) -> tuple[xr.Dataset, xr.Dataset]:
+    """The MDA prefix of the study plus the adaptive rounds of ``cfg`` (simulated into ``work``)."""
+    from moorlife import lifecycle
+    from moorlife.selection import rounds as rounds_mod
+    from moorlife.stages import result_settings, thrust_for
+    from moorlife.stages import simulate as sim_stage
+    from moorlife.stages.check import check_study
+
+    ad = cfg["lifecycle"]["adaptive"]
+    n_mda = rounds_mod.mda_budget(cfg["selection"]["n_train"], ad["rounds"], ad["per_round"])
+    role = cases["role"].values.astype(object).astype(str)
+    keep = (role == "validate") | ((role == "train") & (np.arange(role.size) < n_mda))
+    if int(((role == "train") & keep).sum()) != n_mda:
+        raise ValueError(f"{ms}: the study has {int((role == 'train').sum())} MDA states, fewer than {n_mda}")
+    cs = cases.isel(case=np.flatnonzero(keep))
+    sm = sims.sel(case=cs["case"].values)
+    settings = lifecycle.rbf_settings(cfg["lifecycle"]["rbf"])
+    thrust = thrust_for(settings, ROOT / cfg["platform"])
+    row = check_study(cfg, _schema()).mooring.loc[ms]
+    row = {k: (v.item() if hasattr(v, "item") else v) for k, v in row.items()}
+    picks, rsims = [], []
+    for r in range(1, ad["rounds"] + 1):
+        pdir = work / "picks"
+        ppath, spath = pdir / f"picks_{r}.zarr", pdir / f"simulations_{r}.zarr"
+        if not ppath.exists():
+            from moorlife.io import write_zarr
+
+            ds = rounds_mod.pick_round(
+                hindcast,
+                rounds_mod.with_rounds(cs, picks),
+                rounds_mod.with_rounds(sm, rsims),
+                settings=settings,
+                n=int(ad["per_round"]),
+                number=r,
+                thrust=thrust,
+            )
+            pdir.mkdir(parents=True, exist_ok=True)
+            write_zarr(ds, ppath)
+        if not spath.exists():
+            sim_stage.run(
+                cases=ppath,
+                platform=results / "hydro" / "platform.nc",
+                platform_cfg=ROOT / cfg["platform"],
+                store=spath,
+                dim="case",
+                ms=ms,
+                row=row,
+                seed=cfg["seed"],
+                simulation=result_settings(cfg, "simulation"),
+                mooring=cfg.get("mooring", {}),
+                fatigue=cfg["fatigue"],
+                statistics=cfg.get("statistics", {}),
+                stream=rounds_mod.ROUND_STREAM,
+                threads=2,
+                log=work / f"simulate_{r}.log",
+            )
+        picks.append(_open(ppath))
+        rsims.append(_open(spath))
+    return rounds_mod.with_rounds(cs, picks), rounds_mod.with_rounds(sm, rsims)
+
+
+def _schema() -> dict[str, Any]:
+    from moorlife.io import read_yaml
+
+    return read_yaml(ROOT / "workflow" / "schemas" / "config.schema.yaml")
+
+
+def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dict[str, xr.Dataset]) -> dict[str, Any]:
+    """Fit one variant for one system; its validation, truth and cost figures."""
+    from moorlife import lifecycle, truth
+    from moorlife.stages import thrust_for
+
+    settings = lifecycle.rbf_settings(cfg["lifecycle"]["rbf"])
+    cases, sims = stores["cases"], stores["sims"]
+    if cfg["lifecycle"]["adaptive"]["rounds"]:
+        cases, sims = adaptive_training(cfg, ms, results, work, cases, sims, stores["hindcast"])
+    t0 = time.process_time()
+    lc = lifecycle.reconstruct_lifecycle(
+        stores["hindcast"],
+        cases,
+        sims,
+        settings=settings,
+        fatigue_cfg=cfg["fatigue"],
+        compare_transforms=False,
+        thrust=thrust_for(settings, ROOT / cfg["platform"]),
+    )
+    cpu = time.process_time() - t0
+    out: dict[str, Any] = {"cpu": cpu, "n_train": int(lc.attrs["n_train"])}
+    out["validation_r"] = pd.Series(lc["validation_r"].values, index=lc["output"].values.astype(object).astype(str))
+    out["choice"] = pd.DataFrame(
+        {k: lc[k].values for k in ("input_space", "transform", "retransform_factor", "shape_parameter", "smoothing")},
+        index=out["validation_r"].index,
+    )
+    if stores.get("truth") is not None:
+        cmp = truth.compare_window(
+            stores["truth"],
+            lc,
+            stores["discrete_states"],
+            stores["discrete_sims"],
+            outputs=list(settings.outputs),
+            seed2=stores.get("seed2"),
+        )
+        out["truth_r"] = pd.Series(cmp["r"].values, index=cmp["output"].values.astype(object).astype(str))
+        out["noise_r"] = pd.Series(cmp["noise_r"].values, index=out["truth_r"].index)
+        dmg = cmp[
+            ["truth_damage", "reconstruction_damage", "bins_damage", "reconstruction_error_pct", "seed_sum_std_pct"]
+        ].to_dataframe()
+        dmg["z"] = dmg["reconstruction_error_pct"] / dmg["seed_sum_std_pct"]
+        out["window"] = dmg
+        out["n_hours"] = int(cmp.attrs["n_hours"])
+    return out
+
+
+def load(results: Path, ms: str) -> dict[str, xr.Dataset] | None:
+    sims = _open(results / ms / "simulations.zarr")
+    if sims is None:
+        return None
+    return {
+        "hindcast": _open(results / "metocean" / "hindcast.zarr"),
+        "cases": _open(results / "selection" / "cases.zarr"),
+        "sims": sims,
+        "truth": _open(results / ms / "truth.zarr"),
+        "seed2": _open(results / ms / "truth_seed2.zarr"),
+        "discrete_states": _open(results / "selection" / "discrete.zarr"),
+        "discrete_sims": _open(results / ms / "discrete.zarr"),
+    }
+
+
+def _damage_labels(index: pd.Index) -> list[str]:
+    return [o for o in index if o.startswith(DAMAGE)]
+
+
+def report(res: dict[tuple[str, str], dict[str, Any]], variants: list[str]) -> str:
+    """The markdown tables."""
+    lines = ["### Validation r on the 225 states (min over outputs; the damage of each line)", ""]
+    sample = next(iter(res.values()))["validation_r"].index
+    dl = _damage_labels(sample)
+    lines += ["| system | variant | training states | min r (output) | " + " | ".join(dl) + " | fit + predict CPU-s |"]
+    lines += ["|---" * (5 + len(dl)) + "|"]
+    for (ms, v), m in res.items():
+        r = m["validation_r"]
+        lines.append(
+            f"| {ms} | {v} | {m['n_train']} | {r.min():.3f} ({r.idxmin()}) | "
+            + " | ".join(f"{r[o]:.3f}" for o in dl)
+            + f" | {m['cpu']:.1f} |"
+        )
+    with_truth = {k: m for k, m in res.items() if "truth_r" in m}
+    if with_truth:
+        lines += ["", "### Per-hour r on the truth window (noise floor: r of two seeds)", ""]
+        lines += [
+            "| system | variant | hours | min r (output) | " + " | ".join(dl) + " |",
+            "|---" * (4 + len(dl)) + "|",
+        ]
+        for (ms, v), m in with_truth.items():
+            r = m["truth_r"]
+            lines.append(
+                f"| {ms} | {v} | {m['n_hours']} | {r.min():.3f} ({r.idxmin()}) | "
+                + " | ".join(f"{r[o]:.3f}" for o in dl)
+                + " |"
+            )
+            if v == variants[0]:
+                nr = m["noise_r"]
+                lines.append(f"| {ms} | noise floor | | | " + " | ".join(f"{nr[o]:.3f}" for o in dl) + " |")
+        lines += [
+            "",
+            "### Window damage: reconstruction error % against the truth (z = error / seed sd of the sum)",
+            "",
+        ]
+        keys = list(next(iter(with_truth.values()))["window"].index)
+        head = [f"{c.upper()} {ln}" for c, ln in keys]
+        lines += ["| system | variant | " + " | ".join(head) + " |", "|---" * (2 + len(head)) + "|"]
+        for (ms, v), m in with_truth.items():
+            w = m["window"]
+            lines.append(
+                f"| {ms} | {v} | "
+                + " | ".join(f"{w.loc[k, 'reconstruction_error_pct']:+.1f} (z {w.loc[k, 'z']:+.1f})" for k in keys)
+                + " |"
+            )
+            if v == variants[0]:
+                lines.append(
+                    f"| {ms} | bins | "
+                    + " | ".join(f"{100 * (w.loc[k, 'bins_damage'] / w.loc[k, 'truth_damage'] - 1):+.1f}" for k in keys)
+                    + " |"
+                )
+                lines.append(
+                    f"| {ms} | seed sd of the sum % | "
+                    + " | ".join(f"{w.loc[k, 'seed_sum_std_pct']:.2f}" for k in keys)
+                    + " |"
+                )
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--results", type=Path, default=ROOT / "results")
+    p.add_argument("--systems", nargs="+", default=["MS1", "MS2", "MS3", "MS4", "MS5", "MS6"])
+    p.add_argument("--variant", action="append", default=[], help="NAME=OVERLAY[,OVERLAY...] (empty: config.yaml)")
+    p.add_argument("--work", type=Path, default=ROOT / "results" / "validation_rounds")
+    p.add_argument("--choices", action="store_true", help="also print each variant's per-output choices")
+    a = p.parse_args(argv)
+    variants = {}
+    for spec in a.variant or ["paper="]:
+        name, _, files = spec.partition("=")
+        variants[name] = study([f for f in files.split(",") if f])
+    res: dict[tuple[str, str], dict[str, Any]] = {}
+    for ms in a.systems:
+        stores = load(a.results, ms)
+        if stores is None:
+            print(f"{ms}: no simulations under {a.results}, skipped", file=sys.stderr)
+            continue
+        for name, cfg in variants.items():
+            res[(ms, name)] = m = measure(cfg, ms, a.results, a.work / ms / name, stores)
+            print(f"{ms} {name}: min validation r {m['validation_r'].min():.4f}, {m['cpu']:.1f} CPU-s", file=sys.stderr)
+            if a.choices:
+                print(f"{ms} {name} choices:\n{m['choice'].to_string()}", file=sys.stderr)
+    print(report(res, list(variants)))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
