@@ -413,7 +413,7 @@ def main() -> None:
         f"MS2 lines, WAMIT {Path(args.wamit).name}; moorlife record {transient:.0f} s transient + "
         f"{args.record:.0f} s, dt {cfg['simulation']['dt']} s, seed {seed}; wind {wind}"
     )
-    print("CPU seconds (time.process_time), one process; set-up (file reading, model building, JIT) apart")
+    print("CPU seconds (time.process_time), one process; set-up (file reading, model building, JIT) apart", flush=True)
 
     t0 = time.process_time()
     ours = ours_models(cfg, pcfg, row, args.wamit)
@@ -438,6 +438,15 @@ def main() -> None:
                 t0 = time.process_time()
                 raft_models[0].fowtList[0].readHydro()
                 reread = time.process_time() - t0
+            print(
+                f"set-up: moorlife WAMIT read + 2 models {setup_ours:.1f} CPU-s, JIT warm-up {jit:.1f} CPU-s; "
+                + ", ".join(f"RAFT moorMod {k} model {v:.1f} CPU-s" for k, v in setup_raft.items())
+            )
+            print(
+                f"RAFT trim (its net static load at rest, removed as moorlife does): heave {net[2] / 1e3:.0f} kN, "
+                f"roll {net[3] / 1e3:.0f} kN m, pitch {net[4] / 1e3:.0f} kN m",
+                flush=True,
+            )
             rows, failed = [], {}
             for (label, s), g in zip(states, gammas, strict=True):
                 m_dyn = ours["dynamic"]
@@ -452,19 +461,20 @@ def main() -> None:
                         failed[mod] = f"{label}: {type(exc).__name__}: {exc}"
                         del raft_models[mod]
                 rows.append(r)
+                progress(r)
         finally:
             os.chdir(cwd)
-    print(
-        f"set-up: moorlife WAMIT read + 2 models {setup_ours:.1f} CPU-s, JIT warm-up {jit:.1f} CPU-s; "
-        + ", ".join(f"RAFT moorMod {k} model {v:.1f} CPU-s" for k, v in setup_raft.items())
-    )
-    print(
-        f"RAFT trim (its net static load at rest, removed as moorlife does): heave {net[2] / 1e3:.0f} kN, "
-        f"roll {net[3] / 1e3:.0f} kN m, pitch {net[4] / 1e3:.0f} kN m"
-    )
     for mod, err in failed.items():
         print(f"RAFT moorMod {mod} failed ({err}); left out of the tables")
     report(rows, tuple(m for m in mods if m not in failed), args.record + transient, reread)
+
+
+def progress(r: dict) -> None:
+    """One line per finished sea state (CPU-s, fairlead tension std in kN), before the tables."""
+    keys = [k for k in ("dynamic", "quasistatic", "raft0", "raft1") if k in r]
+    cost = ", ".join(f"{k} {r[k][0]:.2f}" for k in keys)
+    std = "; ".join(f"{k} " + " ".join(f"{tension(r, k, i)[1]:.1f}" for i in range(3)) for k in keys)
+    print(f"done {r['label']}: CPU-s {cost}; tension std M1 M2 M3 {std}", flush=True)
 
 
 def report(rows: list[dict], mods: tuple, simulated: float, reread: float) -> None:
