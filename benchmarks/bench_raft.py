@@ -89,11 +89,12 @@ TABLE6 = {
 KEYS = ("hs", "tp", "wave_dir", "wind_speed", "wind_dir")
 
 
-def sea_states(cfg: dict, rows: list[int]) -> list[tuple[str, dict]]:
-    """The Table 6 rows asked for, plus config lifecycle.sensitivity.sea_state (paper section 4.2)."""
+def sea_states(cfg: dict, rows: list[int], sensitivity: bool = True) -> list[tuple[str, dict]]:
+    """The Table 6 rows asked for, and config lifecycle.sensitivity.sea_state (paper section 4.2)."""
     out = [(f"T6#{r}", dict(zip(KEYS, TABLE6[r], strict=True))) for r in rows]
-    sens = cfg["lifecycle"]["sensitivity"]["sea_state"]
-    out.insert(min(2, len(out)), ("sens.", {k: float(sens[k]) for k in KEYS}))
+    if sensitivity:
+        sens = cfg["lifecycle"]["sensitivity"]["sea_state"]
+        out.insert(min(2, len(out)), ("sens.", {k: float(sens[k]) for k in KEYS}))
     return out
 
 
@@ -387,6 +388,7 @@ def main() -> None:
     )
     ap.add_argument("--iref", type=float, default=0.14, help="--wind kaimal: IEC reference turbulence intensity")
     ap.add_argument("--rows", type=int, nargs="+", default=[6, 16, 30, 35], choices=sorted(TABLE6))
+    ap.add_argument("--no-sensitivity", action="store_true", help="without config lifecycle.sensitivity.sea_state")
     ap.add_argument("--seed", type=int, default=None, help="moorlife's random phases (default: config seed)")
     ap.add_argument("--skip-moormod1", action="store_true", help="RAFT with quasi-static tensions only")
     args = ap.parse_args()
@@ -403,7 +405,7 @@ def main() -> None:
     row["mooring_system"] = "MS2"
     transient = float(cfg["simulation"]["transient"] if args.transient is None else args.transient)
     seed = int(cfg["seed"] if args.seed is None else args.seed)
-    states = sea_states(cfg, args.rows)
+    states = sea_states(cfg, args.rows, not args.no_sensitivity)
     gammas = [float(env.resolve_gamma(cfg["simulation"]["gamma"], s["hs"], s["tp"])) for _, s in states]
     mods = (0,) if args.skip_moormod1 else (0, 1)
 
