@@ -129,6 +129,23 @@ def test_noise_floor_known_answers():
     assert nf["r"][0] == pytest.approx(np.corrcoef(a[:, 0], b[:, 0])[0, 1])
 
 
+def test_noise_floor_of_a_sum_follows_the_windows_own_values():
+    """A relative seed scatter: every seed-2 value 10 % above seed 1. c^2 = sum(0.5 (0.1 x)^2) /
+    sum((1.05 x)^2) = 0.005 / 1.1025; over a window whose damage sits in one hour of 100 the
+    sum's scatter is c (the storm's own), not c / 10 as the subset's mean variance says."""
+    a = np.array([[1.0], [2.0], [3.0], [4.0]])
+    c = np.sqrt(0.005 / 1.1025)
+    window = np.r_[np.full(99, 1e-6), [1.0]][:, None]
+    nf = T.noise_floor(a, 1.1 * a, n_window=100, window=window)
+    expect = 100 * c * np.sqrt(np.sum(window**2)) / np.sum(window)
+    assert nf["sum_std_pct"][0] == pytest.approx(expect)
+    assert nf["sum_std_pct"][0] == pytest.approx(100 * c, rel=1e-3)
+    flat = T.noise_floor(a, 1.1 * a, n_window=100, window=np.ones((100, 1)))
+    assert flat["sum_std_pct"][0] == pytest.approx(100 * c / 10)
+    with pytest.raises(ValueError, match="differ in outputs"):
+        T.noise_floor(a, a, window=np.ones((5, 2)))
+
+
 def _random_hours(n, seed=3):
     rng = np.random.default_rng(seed)
     return {

@@ -167,6 +167,16 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
             ["truth_damage", "reconstruction_damage", "bins_damage", "reconstruction_error_pct", "seed_sum_std_pct"]
         ].to_dataframe()
         dmg["z"] = dmg["reconstruction_error_pct"] / dmg["seed_sum_std_pct"]
+        # the life band of results/comparison/summary.csv (lifecycle.summary_table): relative
+        # sigma = hypot(seed CV of one state's hourly damage, max |validation sum error| of the curve)
+        val_err = pd.Series(lc["validation_sum_error"].values, index=out["validation_r"].index)
+        sig = []
+        for curve, _line in dmg.index:
+            var = dict(zip(("sn", "tn"), DAMAGE))[curve]
+            rel = float(np.nanmax(np.abs(val_err[[o for o in val_err.index if o.startswith(var)]])))
+            sig.append(float(np.hypot(stores.get("seed_cv", {}).get(curve, 0.0), rel)))
+        dmg["band_sigma_pct"] = 100 * np.asarray(sig)
+        dmg["k_needed"] = np.abs(dmg["reconstruction_error_pct"]) / dmg["band_sigma_pct"]
         out["window"] = dmg
         out["n_hours"] = int(cmp.attrs["n_hours"])
     return out
@@ -184,6 +194,18 @@ def load(results: Path, ms: str) -> dict[str, xr.Dataset] | None:
         "seed2": _open(results / ms / "truth_seed2.zarr"),
         "discrete_states": _open(results / "selection" / "discrete.zarr"),
         "discrete_sims": _open(results / ms / "discrete.zarr"),
+        "seed_cv": _seed_cv(results / "sensitivity" / "seeds.zarr"),
+    }
+
+
+def _seed_cv(path: Path) -> dict[str, float]:
+    """The seed CV of the compare stage (``moorlife.stages.compare``): the largest over lines."""
+    ds = _open(path)
+    if ds is None:
+        return {}
+    return {
+        c: float(np.max(np.std(ds[v].values, axis=0, ddof=1) / np.mean(ds[v].values, axis=0)))
+        for c, v in zip(("sn", "tn"), DAMAGE)
     }
 
 
@@ -248,6 +270,15 @@ def report(res: dict[tuple[str, str], dict[str, Any]], variants: list[str]) -> s
                     + " | ".join(f"{w.loc[k, 'seed_sum_std_pct']:.2f}" for k in keys)
                     + " |"
                 )
+        lines += ["", "### Life band against the truth: band sigma % (coverage factor k needed to hold the truth)", ""]
+        lines += ["| system | variant | " + " | ".join(head) + " |", "|---" * (2 + len(head)) + "|"]
+        for (ms, v), m in with_truth.items():
+            w = m["window"]
+            lines.append(
+                f"| {ms} | {v} | "
+                + " | ".join(f"{w.loc[k, 'band_sigma_pct']:.1f} (k {w.loc[k, 'k_needed']:.2f})" for k in keys)
+                + " |"
+            )
     return "\n".join(lines)
 
 
