@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from moorlife import rbf
+from moorlife import gp, rbf
+from moorlife.lifecycle.spaces import space_inputs
 
 __all__ = ["error_indicator", "suggest_states", "life_band"]
 
@@ -19,9 +20,14 @@ def error_indicator(model: rbf.RBFModel, points: npt.ArrayLike, scale: npt.Array
     median nearest-neighbour spacing of the training states. High where the surface varies
     fast (large LOO error) and training states are sparse.
 
+    A Gaussian-process :class:`moorlife.lifecycle.Reconstruction` with ``indicator == "sd"``
+    (``lifecycle.rbf.gp.indicator``) gives instead ``max_k s_k(x) / scale_k``, ``s_k`` the
+    latent posterior standard deviation of output ``k`` (transformed units; the noise left
+    out, as more simulations cannot reduce it): one triangular solve per hour and output.
+
     Parameters
     ----------
-    model : moorlife.rbf.RBFModel
+    model : moorlife.rbf.RBFModel or moorlife.lifecycle.Reconstruction
     points : array_like, shape (n, 5)
     scale : array_like, shape (k,)
 
@@ -32,9 +38,13 @@ def error_indicator(model: rbf.RBFModel, points: npt.ArrayLike, scale: npt.Array
         Normalised distance to the nearest training state.
     """
     dist, idx = rbf.nearest_centre(model, points)
-    typical = _typical_spacing(model)
     s = np.asarray(scale, dtype=float)
     s = np.where(s > 0, s, 1.0)
+    if getattr(model, "indicator", "loo") == "sd":
+        x = space_inputs(model.spaces[0], np.asarray(points, dtype=float), None, None, model.thrust)[0]
+        _, var = gp.predict_latent(model.models[0], x, variance_of=np.ones(s.size, bool))
+        return np.max(np.sqrt(var) / s, axis=1), dist
+    typical = _typical_spacing(model)
     loo = np.max(np.abs(model.loo_error) / s, axis=1)  # (m,)
     return loo[idx] * dist / typical, dist
 
