@@ -30,7 +30,9 @@ def _states(n: int, seed: int) -> np.ndarray:
 def _smooth(x: np.ndarray) -> np.ndarray:
     """A smooth 5-D surface: Hs, Tp, the wave direction on the circle, the wind speed."""
     w, _, hs, tp, alpha = x.T
-    return 1.0 + 0.3 * hs**2 + 0.5 * np.exp(-(((tp - 11.0) / 4.0) ** 2)) + 0.4 * np.cos(np.deg2rad(alpha)) + 0.002 * w**2
+    return (
+        1.0 + 0.3 * hs**2 + 0.5 * np.exp(-(((tp - 11.0) / 4.0) ** 2)) + 0.4 * np.cos(np.deg2rad(alpha)) + 0.002 * w**2
+    )
 
 
 def test_chord_embedding_is_circular_and_matches_the_folded_distance_to_first_order():
@@ -58,7 +60,9 @@ def test_mean_and_variance_equal_scikit_learns_predict():
     y = _smooth(x) + np.random.default_rng(2).normal(0, 0.2, 60)
     model = gp.fit_gp(x, y, is_direction=MASK)
     kern = C(model.signal_var[0] / y.var()) * RBF(model.length_scale[0]) + WhiteKernel(model.noise_var[0] / y.var())
-    ref = GaussianProcessRegressor(kern, alpha=0.0, normalize_y=True, optimizer=None).fit(gp.chord_embed(x, model.space), y)
+    ref = GaussianProcessRegressor(kern, alpha=0.0, normalize_y=True, optimizer=None).fit(
+        gp.chord_embed(x, model.space), y
+    )
     xq = _states(40, 3)
     mu, var = gp.predict_latent(model, xq, variance_of=[True])
     mu_ref, sd_ref = ref.predict(gp.chord_embed(xq, model.space), return_std=True)
