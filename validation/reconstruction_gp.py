@@ -2,7 +2,7 @@
 
 Usage::
 
-    .venv/bin/python validation/reconstruction_gp.py RESULTS CONFIG MS2 [MS1 ...] [--gp-variants]
+    .venv/bin/python validation/reconstruction_gp.py RESULTS CONFIG MS2 [MS1 ...] [--gp-variants] [--truth STORE]
 
 Reads (never writes) ``RESULTS/metocean/hindcast.zarr``, ``RESULTS/selection/cases.zarr`` and
 ``RESULTS/{ms}/simulations.zarr``, builds the training and validation matrices exactly as
@@ -18,6 +18,11 @@ For each: fit and predict CPU time (every hindcast hour, single thread when run 
 own units on the training states (closed form: Rippa's for the RBF, Rasmussen & Williams eq. 5.12
 for the GP) and the validation r on the validation states; then the life-cycle damage sum of each
 damage output relative to the default's. The validation states never enter a fit.
+
+``--truth STORE`` (one system only) also compares with a truth store of every hour of a window
+(``RESULTS/{ms}/truth.zarr``, case id = hindcast index; a store still being written may be
+given: its hours not yet simulated are NaN and left out): per output the per-hour r, and per
+damage output the window's sum over the truth's.
 """
 
 from __future__ import annotations
@@ -56,7 +61,10 @@ def main() -> None:
     ap.add_argument("config")
     ap.add_argument("systems", nargs="+")
     ap.add_argument("--gp-variants", action="store_true")
+    ap.add_argument("--truth", help="a truth store of the (one) system, for per-hour r and window sums")
     args = ap.parse_args()
+    if args.truth and len(args.systems) != 1:
+        ap.error("--truth takes one system")
     cfg = read_yaml(args.config)
     rbf_cfg = dict((cfg.get("lifecycle") or {}).get("rbf") or {})
     curve = lc.thrust_curve(read_yaml(ROOT / "config/platform.yaml"))
@@ -82,7 +90,15 @@ def main() -> None:
             f"{hp.shape[0]} hours",
             flush=True,
         )
-        table, sums, base = {}, {}, None
+        table, sums, base, truth_rows = {}, {}, None, {}
+        if args.truth:
+            import xarray as xr
+
+            ts = xr.open_zarr(args.truth, consolidated=False)
+            yt = lc.stack_outputs(ts, dim, cols)
+            done = np.isfinite(yt).all(axis=1)
+            yt, xt = yt[done], hp[ts[dim].values[done]]
+            print(f"truth: {int(done.sum())} of {done.size} hours of {args.truth}", flush=True)
         for name, c in variants(rbf_cfg, args.gp_variants).items():
             st = lc.RBFSettings.from_config(c)
             c0 = time.process_time()
@@ -93,6 +109,12 @@ def main() -> None:
             r = lc.validation_metrics(lc.predict_outputs(model, x[va]), y[va])["r"]
             table[name] = (model.loo_rmse_units, r)
             sums[name] = np.clip(pred[:, is_dmg], 0, None).sum(axis=0)
+            if args.truth:
+                pt = lc.predict_outputs(model, xt)
+                truth_rows[name] = (
+                    lc.validation_metrics(pt, yt)["r"],
+                    np.clip(pt[:, is_dmg], 0, None).sum(axis=0) / yt[:, is_dmg].sum(axis=0),
+                )
             base = c2 - c0 if base is None else base
             print(
                 f"{name:<30} fit {c1 - c0:6.2f} + predict {c2 - c1:6.2f} = {c2 - c0:6.2f} CPU-s "
@@ -114,6 +136,14 @@ def main() -> None:
         print(f"\n{ms}: life-cycle damage sum over every hour, ratio to {ref!r}")
         for j, lab in enumerate(np.asarray(labels)[is_dmg]):
             print(f"{lab:<18}" + "".join(f"{sums[k][j] / sums[ref][j]:>22.4f}" for k in keys))
+        if truth_rows:
+            print(f"\n{ms}: truth window, per-hour r")
+            print(f"{'output':<18}" + "".join(f"{k[:20]:>22}" for k in keys))
+            for j, lab in enumerate(labels):
+                print(f"{lab:<18}" + "".join(f"{truth_rows[k][0][j]:>22.4f}" for k in keys))
+            print(f"\n{ms}: truth window, damage sum over the truth's")
+            for j, lab in enumerate(np.asarray(labels)[is_dmg]):
+                print(f"{lab:<18}" + "".join(f"{truth_rows[k][1][j]:>22.4f}" for k in keys))
 
 
 if __name__ == "__main__":
