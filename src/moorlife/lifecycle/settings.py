@@ -8,7 +8,20 @@ from typing import Any
 
 from moorlife.settings import fill_section
 
-__all__ = ["GPSettings", "RBFSettings", "rbf_settings"]
+__all__ = ["GPBounds", "GPSettings", "RBFSettings", "rbf_settings"]
+
+
+@dataclass(frozen=True)
+class GPBounds:
+    """Start and bounds of one GP hyperparameter (``lifecycle.rbf.gp.length_scale`` etc.)."""
+
+    initial: float
+    min: float
+    max: float
+
+    def astuple(self) -> tuple[float, float, float]:
+        """``(initial, min, max)``, as :func:`moorlife.gp.fit_gp` takes them."""
+        return (self.initial, self.min, self.max)
 
 
 @dataclass(frozen=True)
@@ -18,8 +31,8 @@ class GPSettings:
     Attributes
     ----------
     kernel : {"ard", "isotropic"}
-    length_scale, signal, noise : tuple of float
-        ``(initial, min, max)`` of each hyperparameter (:func:`moorlife.gp.fit_gp`).
+    length_scale, signal, noise : GPBounds
+        Start and bounds of each hyperparameter (:func:`moorlife.gp.fit_gp`).
     restarts, seed, subsample : int
     thrust : bool
         Add the rotor thrust ``T(W)`` as an input coordinate.
@@ -30,9 +43,9 @@ class GPSettings:
     """
 
     kernel: str
-    length_scale: tuple[float, float, float]
-    signal: tuple[float, float, float]
-    noise: tuple[float, float, float]
+    length_scale: GPBounds
+    signal: GPBounds
+    noise: GPBounds
     restarts: int
     seed: int
     subsample: int
@@ -51,8 +64,8 @@ class GPSettings:
         """
         triples = {}
         for key in ("length_scale", "signal", "noise"):
-            t = (float(g[key]["initial"]), float(g[key]["min"]), float(g[key]["max"]))
-            if not t[1] <= t[0] <= t[2]:
+            t = GPBounds(float(g[key]["initial"]), float(g[key]["min"]), float(g[key]["max"]))
+            if not t.min <= t.initial <= t.max:
                 raise ValueError(f"{source}: lifecycle.rbf.gp.{key} needs min <= initial <= max, got {g[key]}")
             triples[key] = t
         return cls(
