@@ -62,6 +62,7 @@ def main() -> None:
     ap.add_argument("systems", nargs="+")
     ap.add_argument("--gp-variants", action="store_true")
     ap.add_argument("--truth", help="a truth store of the (one) system, for per-hour r and window sums")
+    ap.add_argument("--only", nargs="+", help="fit only these variants (the first stays the reference)")
     args = ap.parse_args()
     if args.truth and len(args.systems) != 1:
         ap.error("--truth takes one system")
@@ -99,7 +100,10 @@ def main() -> None:
             done = np.isfinite(yt).all(axis=1)
             yt, xt = yt[done], hp[ts[dim].values[done]]
             print(f"truth: {int(done.sum())} of {done.size} hours of {args.truth}", flush=True)
-        for name, c in variants(rbf_cfg, args.gp_variants).items():
+        todo = variants(rbf_cfg, args.gp_variants)
+        if args.only:
+            todo = {k: v for i, (k, v) in enumerate(todo.items()) if i == 0 or k in args.only}
+        for name, c in todo.items():
             st = lc.RBFSettings.from_config(c)
             c0 = time.process_time()
             model = lc.fit_outputs(x[tr], y[tr], cols, st, lo=lo, span=span, thrust=curve)
