@@ -4,6 +4,7 @@ Run:  .venv/bin/python benchmarks/bench_rbf.py                 (paper scale)
       .venv/bin/python benchmarks/bench_rbf.py --hours 50000   (quicker)
       .venv/bin/python benchmarks/bench_rbf.py --skip-bluemath
       .venv/bin/python benchmarks/bench_rbf.py --choice-only   (section 5 only)
+      .venv/bin/python benchmarks/bench_rbf.py --choice-only --noise   (seed-like noise added)
 
 Data: the synthetic BiMEP-like hindcast of moorlife.metocean (31 years = 271,728 hours, seed
 20190601), 1,000 training states by moorlife.selection.mda (from the largest Hs) and 225
@@ -27,8 +28,13 @@ west-north-west seas), so that the timing and the transform comparison are meani
 5. The choice of ``lifecycle.rbf.choose``: ``lifecycle.fit_outputs`` + ``predict_outputs`` with
    the default settings (``global``) and with ``per_output`` (spaces paper and thrust, with
    the NREL 5 MW thrust curve of ``config/platform.yaml``; transforms linear and log10, or the
-   damage kept log10), with each back-transform correction, in the same run: cost, its ratio to the default, choices,
-   validation r and the error of the life damage against the true sum.
+   damage kept log10), with each back-transform correction, and the Gaussian process
+   (``method: gp``, :mod:`moorlife.gp`) in the same run: cost, its ratio to the default,
+   choices, validation r and the error of the life damage against the true sum; then per output
+   the leave-one-out RMSE in the output's units and the validation r, RBF against GP.
+   ``--noise`` multiplies every simulated value (training and validation) by seeded lognormal
+   noise of mean 1, CV 25 % on the damage and 3 % on the other outputs (the seed noise of a
+   one-hour record); the true sums stay those of the noise-free surfaces.
 """
 
 from __future__ import annotations
@@ -84,6 +90,18 @@ def responses(x: np.ndarray) -> tuple[np.ndarray, list[str]]:
     return np.column_stack(cols), labels
 
 
+#: Coefficient of variation of the seed-like noise of ``--noise``: damage, other outputs.
+NOISE_CV = (0.25, 0.03)
+
+
+def add_noise(y: np.ndarray, labels: list[str], seed: int) -> np.ndarray:
+    """``y`` times lognormal noise of mean 1 (CV ``NOISE_CV``), seeded."""
+    cv = np.array([NOISE_CV[0] if lab.startswith("damage") else NOISE_CV[1] for lab in labels])
+    s2 = np.log1p(cv**2)
+    e = np.random.default_rng(seed).standard_normal(y.shape)
+    return y * np.exp(np.sqrt(s2) * e - s2 / 2)
+
+
 def metrics(pred: np.ndarray, true: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     r = np.array([np.corrcoef(pred[:, k], true[:, k])[0, 1] for k in range(true.shape[1])])
     rmse = np.sqrt(np.mean((pred - true) ** 2, axis=0))
@@ -102,6 +120,8 @@ def main() -> None:
     ap.add_argument("--skip-bluemath", action="store_true")
     ap.add_argument("--bluemath-outputs", type=int, default=1)
     ap.add_argument("--choice-only", action="store_true", help="run section 5 only (lifecycle.rbf.choose)")
+    ap.add_argument("--noise", action="store_true", help="add seed-like lognormal noise to every simulated value")
+    ap.add_argument("--gp-variants", action="store_true", help="section 5: also the GP's other settings")
     args = ap.parse_args()
 
     pts = hindcast_points()
@@ -113,6 +133,8 @@ def main() -> None:
     valid = select_validation(pts, 225, exclude=train, is_direction=MASK, rule="random", seed=SEED)
     y, labels = responses(pts[train])
     y_val, _ = responses(pts[valid])
+    if args.noise:
+        y, y_val = add_noise(y, labels, SEED + 1), add_noise(y_val, labels, SEED + 2)
     is_dmg = np.array([lab.startswith("damage") for lab in labels])
     print(f"hindcast {n} hours, {len(train)} training + {len(valid)} validation states, {len(labels)} outputs")
     print(f"threads: numba {os.environ.get('NUMBA_NUM_THREADS', 'default')}, load {os.getloadavg()[0]:.2f}")
@@ -120,7 +142,7 @@ def main() -> None:
     # warm up the numba kernels (compilation is cached, not part of the measurement)
     rbf.predict_rbf(rbf.fit_rbf(pts[train[:50]], y[:50, :2], is_direction=MASK, shape=0.2), pts[:100])
     if args.choice_only:
-        choice_section(pts, train, valid, y, y_val, labels, lo, span)
+        choice_section(pts, train, valid, y, y_val, labels, lo, span, args.gp_variants)
         return
 
     # 1. ours at paper scale
@@ -241,8 +263,8 @@ def main() -> None:
         print(f"{k}: validation damage sum error {np.round(100 * (p / tot_true - 1), 2)} %")
 
 
-def choice_section(pts, train, valid, y, y_val, labels, lo, span) -> None:
-    """5. lifecycle.rbf.choose: global (the default) vs per_output, cost and quality, same run."""
+def choice_section(pts, train, valid, y, y_val, labels, lo, span, gp_variants=False) -> None:
+    """5. lifecycle.rbf.choose: global (the default) vs per_output vs the GP, cost and quality, same run."""
     from pathlib import Path
 
     from moorlife import lifecycle
@@ -260,25 +282,53 @@ def choice_section(pts, train, valid, y, y_val, labels, lo, span) -> None:
         "per_output, damage log10": {"choose": "per_output", "damage_transforms": ["log10"]},
         "  + smearing": {"choose": "per_output", "damage_transforms": ["log10"], "retransform": "smearing"},
         "  + ratio": {"choose": "per_output", "damage_transforms": ["log10"], "retransform": "ratio"},
+        "gp (method: gp)": {"method": "gp"},
     }
+    if gp_variants:
+        variants.update(
+            {
+                "gp, retransform none": {"method": "gp", "gp": {"retransform": "none"}},
+                "gp, isotropic": {"method": "gp", "gp": {"kernel": "isotropic"}},
+                "gp, thrust": {"method": "gp", "gp": {"thrust": True}},
+                "gp, subsample 300": {"method": "gp", "gp": {"subsample": 300}},
+            }
+        )
+    table = {}
     base = None
     print("\n[5. lifecycle.rbf.choose] fit 1,000 + predict every hour x 16 outputs")
     for name, cfg in variants.items():
         st = lifecycle.RBFSettings.from_config(cfg)
         model, t_fit, c_fit = timed(lifecycle.fit_outputs, pts[train], y, cols, st, lo=lo, span=span, thrust=curve)
         pred, t_pred, c_pred = timed(lifecycle.predict_outputs, model, pts, chunk_rows=st.chunk_rows)
-        total = t_fit + t_pred
+        total = c_fit + c_pred
         base = total if base is None else base
         r = metrics(lifecycle.predict_outputs(model, pts[valid]), y_val)[0]
         life = 100 * (pred[:, is_dmg].sum(axis=0) / true_sum - 1)
+        table[name] = (model.loo_rmse_units, r)
         print(
             f"{name:<25} fit {t_fit:.2f} s (cpu {c_fit:.2f}), predict {t_pred:.2f} s (cpu {c_pred:.2f}), "
-            f"total {total:.2f} s, {total / base:.2f}x the default; validation r min {r.min():.4f}, "
-            f"damage {r[is_dmg].min():.4f}; life damage vs truth {np.round(life, 2)} %"
+            f"total {total:.2f} CPU-s, {total / base:.2f}x the default; validation r min {r.min():.4f}, "
+            f"damage {r[is_dmg].min():.4f}; life damage vs truth {np.round(life, 2)} %",
+            flush=True,
         )
         if cfg.get("choose") == "per_output" and "retransform" not in cfg and "damage_transforms" not in cfg:
             for lab, sp, lg, q in zip(labels, model.input_space, model.log_output, model.shape):
                 print(f"    {lab:<18} {sp:<6} {'log10' if lg else 'linear':<6} q0 {q:.4g}")
+        if st.method == "gp":
+            g = model.models[0]
+            for lab, ls, sv, nv in zip(labels, g.length_scale, g.signal_var, g.noise_var):
+                print(f"    {lab:<18} l {np.array2string(ls, precision=3)} s_f {np.sqrt(sv):.3g} s_n {np.sqrt(nv):.3g}")
+    compare = [k for k in ("global (default)", "per_output, damage log10", "gp (method: gp)") if k in table]
+    print("\nper output: leave-one-out RMSE in the output's units (training states) | validation r (225 states)")
+    print(f"{'output':<18}" + "".join(f"{k[:22]:>24}" for k in compare) + "".join(f"{k[:22]:>24}" for k in compare))
+    for j, lab in enumerate(labels):
+        loo = "".join(f"{table[k][0][j]:>24.4g}" for k in compare)
+        print(f"{lab:<18}" + loo + "".join(f"{table[k][1][j]:>24.4f}" for k in compare))
+    for k in compare:
+        ratio = table[k][0] / table["global (default)"][0]
+        print(
+            f"{k}: LOO RMSE / the default's, min {ratio.min():.3f} max {ratio.max():.3f}; r min {table[k][1].min():.4f}"
+        )
 
 
 if __name__ == "__main__":

@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 import xarray as xr
 
-from moorlife import fatigue, lifecycle, names
+from moorlife import fatigue, gp, lifecycle, names
 
 LINES = list(names.LINES)
 
@@ -556,3 +556,55 @@ def test_per_output_transform_candidates_per_output_kind():
     np.testing.assert_array_equal(model.log_output, ~is_dmg)  # every other output is positive here
     forced = lifecycle.fit_outputs(x, y, cols, lifecycle.RBFSettings.from_config(flipped), log_damage=True)
     np.testing.assert_array_equal(forced.log_output, np.ones(len(cols), bool))
+
+
+GP = {"method": "gp", "outputs": list(lifecycle.DEFAULT_OUTPUTS), "gp": {"subsample": 40}}
+
+
+def test_gp_fit_does_not_depend_on_the_validation_states():
+    """method: gp: perturbing the validation outputs changes the validation metrics and nothing else."""
+    curve = _thrust_curve()
+    hc = _hindcast(1500, seed=30)
+    cases = _cases(hc, 90, 25, seed=31)
+    sims = _sims(cases)
+    y = _ridge_outputs(cases, curve)
+    sims["damage_sn"] = (("case", "line"), np.outer(y[:, 0], [1.0, 0.5, 2.0]))
+    sims["heave_mpm"] = ("case", y[:, 1])
+    settings = lifecycle.RBFSettings.from_config({**GP, "gp": {"subsample": 40, "thrust": True, "indicator": "sd"}})
+    a = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=5, thrust=curve)
+    val = cases["role"].values == "validate"
+    rng = np.random.default_rng(32)
+    for v in ("damage_sn", "heave_mpm", "surge_mpm", "tension_mpm"):
+        scale = rng.uniform(0.2, 5.0, (int(val.sum()),) + sims[v].shape[1:])
+        sims[v][val] = sims[v].values[val] * scale
+    b = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=5, thrust=curve)
+    assert a.attrs["rbf_method"] == "gp" and set(a["input_space"].values) == {"thrust"}
+    assert a.sizes["gp_input"] == 8 and np.all(np.isnan(a["shape_parameter"].values))
+    changed = [v for v in a.data_vars if not a[v].equals(b[v])]
+    assert changed and all(v.startswith("validation_") for v in changed), changed
+    for v in ("gp_length_scale", "gp_noise_sd", "smoothing", "retransform_factor", "loo_error", "error_indicator"):
+        np.testing.assert_array_equal(a[v].values, b[v].values)
+    np.testing.assert_array_equal(a["damage_sn"].values, b["damage_sn"].values)
+
+
+def test_gp_sd_indicator_is_the_largest_latent_sd_over_the_scale():
+    hc = _hindcast(600, seed=33)
+    cases = _cases(hc, 60, 0, seed=34)
+    sims = _sims(cases)
+    sims["surge_mpm"] = sims["surge_mpm"] * np.exp(0.01 * np.random.default_rng(35).standard_normal(60))
+    cols = lifecycle.output_columns(sims, "case", ("surge_mpm", "damage_sn"))
+    x, y = lifecycle._points(cases, "case"), lifecycle.stack_outputs(sims, "case", cols)
+    y[:, 1:] *= np.exp(0.2 * x[:, 2:3])
+    settings = lifecycle.RBFSettings.from_config({**GP, "gp": {"indicator": "sd", "subsample": 0}})
+    model = lifecycle.fit_outputs(x, y, cols, settings)
+    hp = lifecycle._points(hc, "time")
+    scale = np.where(model.log_output, 1.0, y.std(axis=0))
+    ind, dist = lifecycle.error_indicator(model, hp, scale)
+    _, var = gp.predict_latent(model.models[0], hp, variance_of=np.ones(len(cols), bool))
+    np.testing.assert_allclose(ind, np.max(np.sqrt(var) / scale, axis=1), rtol=1e-12)
+    assert ind[dist == 0].mean() < ind[dist > np.quantile(dist, 0.9)].mean()  # surest at the training states
+    loo = lifecycle.fit_outputs(x, y, cols, lifecycle.RBFSettings.from_config({**GP, "gp": {"subsample": 0}}))
+    ind_loo, _ = lifecycle.error_indicator(loo, hp, scale)
+    assert np.all(ind_loo[dist == 0] == 0) and not np.allclose(ind_loo, ind)
+    picks = lifecycle.suggest_states(model, hp, ind, 4, distance=dist)
+    assert picks[0] == int(np.argmax(ind)) and np.unique(picks).size == 4

@@ -20,7 +20,7 @@ by the workflow scripts. Conventions:
   family's rule (``fatigue.design_factor``) and, for DNV, ``dF`` = the damage of the line
   adjacent to the most damaged one over the most damaged (:func:`fatigue.adjacent_damage_ratio`).
 
-Modules: :mod:`~moorlife.lifecycle.settings` (``RBFSettings``), :mod:`~moorlife.lifecycle.outputs`
+Modules: :mod:`~moorlife.lifecycle.settings` (``RBFSettings``, with ``GPSettings``), :mod:`~moorlife.lifecycle.outputs`
 (outputs <-> matrices), :mod:`~moorlife.lifecycle.spaces` (the candidate input spaces: the
 paper's 5-D space, or with the rotor thrust), :mod:`~moorlife.lifecycle.fit` (fit, with the
 global or per-output choice, prediction and validation metrics),
@@ -69,7 +69,7 @@ from moorlife.lifecycle.sensitivity import (
     mean_stress_table,
     seed_lives,
 )
-from moorlife.lifecycle.settings import RBFSettings, rbf_settings
+from moorlife.lifecycle.settings import GPBounds, GPSettings, RBFSettings, rbf_settings
 from moorlife.lifecycle.spaces import ThrustCurve, space_inputs, thrust_at, thrust_curve
 from moorlife.lifecycle.uncertainty import error_indicator, life_band, suggest_states
 
@@ -78,6 +78,8 @@ __all__ = [
     "DEFAULT_OUTPUTS",
     "DAMAGE_VARS",
     "RBFSettings",
+    "GPSettings",
+    "GPBounds",
     "rbf_settings",
     "output_columns",
     "stack_outputs",

@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from moorlife import fatigue, names
+from moorlife import fatigue, gp, names
 from moorlife.lifecycle.damage import (
     DAMAGE_VARS,
     HOURS_PER_YEAR,
@@ -73,8 +73,12 @@ def _a(long_name: str, units: str = "1") -> dict[str, str]:
 def _fit_vars(out: xr.Dataset, model: Reconstruction, x_train: np.ndarray, ids: np.ndarray) -> xr.Dataset:
     """Shape parameters, input spaces, transforms and leave-one-out residuals of the fit."""
     out = out.assign_coords(train=("train", ids))
-    out["shape_parameter"] = ("output", model.shape, _a("RBF shape parameter q0 (normalised distance)"))
-    out["smoothing"] = ("output", model.smoothing, _a("RBF ridge term on the kernel diagonal (0: exact)"))
+    out["shape_parameter"] = ("output", model.shape, _a("RBF shape parameter q0 (normalised distance; NaN: GP)"))
+    out["smoothing"] = (
+        "output",
+        model.smoothing,
+        _a("RBF ridge term on the kernel diagonal (0: exact; GP: s_n^2/s_f^2)"),
+    )
     out["loo_rmse"] = (
         "output",
         np.sqrt(np.mean(model.loo_error**2, axis=0)),
@@ -91,6 +95,17 @@ def _fit_vars(out: xr.Dataset, model: Reconstruction, x_train: np.ndarray, ids: 
         out[key] = ("output", val, dict(names.RBF_CHOICE_ATTRS[key]))
     out["train_points"] = (("train", "metocean_var"), x_train, _a("training sea states (physical units)"))
     out["loo_error"] = (("train", "output"), model.loo_error, _a("leave-one-out residual per training state"))
+    if model.method == "gp":
+        g = model.models[0]
+        variables = list(names.METOCEAN_VARS) + ([names.RBF_SPACE_THRUST] if g.space.scale.size > 5 else [])
+        out = out.assign_coords(gp_input=gp.embedded_names(variables, g.space.is_direction))
+        out["gp_length_scale"] = (
+            ("output", "gp_input"),
+            g.length_scale,
+            _a("GP length scale (normalised input units)"),
+        )
+        out["gp_signal_sd"] = ("output", np.sqrt(g.signal_var), _a("GP signal standard deviation (transformed units)"))
+        out["gp_noise_sd"] = ("output", np.sqrt(g.noise_var), _a("GP noise standard deviation (transformed units)"))
     return out
 
 
@@ -216,6 +231,15 @@ def reconstruct_lifecycle(
     lo, span = _selection_scaling(cases)
     model = fit_outputs(x[train], y[train], cols, settings, lo=lo, span=span, thrust=thrust)
     labels = [_label(c) for c in cols]
+    if model.method == "gp":
+        g = model.models[0]
+        log.info(
+            "GP per output: length scales, signal sd, noise sd (transformed units):\n%s",
+            "\n".join(
+                f"  {lab:<18} {np.array2string(ls, precision=3)} {np.sqrt(sv):.4g} {np.sqrt(nv):.4g}"
+                for lab, ls, sv, nv in zip(labels, g.length_scale, g.signal_var, g.noise_var)
+            ),
+        )
     log.info(
         "RBF fitted on %d training states, %d outputs; shapes %s",
         int(train.sum()),
@@ -293,6 +317,10 @@ def reconstruct_lifecycle(
             "mooring_system": str(sims.attrs.get("mooring_system", "")),
         }
     )
+    if settings.method == "gp":  # the default study's attributes stay as they were
+        g = settings.gp
+        out.attrs.update({"rbf_method": "gp", "gp_kernel": g.kernel, "gp_retransform": g.retransform})
+        out.attrs.update({"gp_subsample": g.subsample, "gp_thrust": int(g.thrust), "gp_indicator": g.indicator})
     return out
 
 

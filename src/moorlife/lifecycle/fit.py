@@ -19,6 +19,11 @@ Two ways to choose each output's interpolant (``lifecycle.rbf.choose``):
 In both, ``lifecycle.rbf.retransform`` sets the back-transform correction of the ``log10``
 outputs (:mod:`moorlife.rbf.transform`). The result is a :class:`Reconstruction`: one
 :class:`moorlife.rbf.RBFModel` per input space in use.
+
+``lifecycle.rbf.method: gp`` replaces the RBF by a Gaussian process with a noise term per output
+(:mod:`moorlife.gp`, the settings of ``lifecycle.rbf.gp``), in the paper space or with the thrust
+(``gp.thrust``), the damage transformed by ``log_damage``: one :class:`moorlife.gp.GPModel` in
+the :class:`Reconstruction`, with its closed-form leave-one-out residuals in ``loo_error``.
 """
 
 from __future__ import annotations
@@ -30,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from moorlife import names, rbf
+from moorlife import gp, names, rbf
 from moorlife.lifecycle.outputs import _label
 from moorlife.lifecycle.settings import RBFSettings
 from moorlife.lifecycle.spaces import ThrustCurve, space_inputs
@@ -84,8 +89,8 @@ class Reconstruction:
 
     Attributes
     ----------
-    models : tuple of moorlife.rbf.RBFModel
-        One per input space in use.
+    models : tuple of moorlife.rbf.RBFModel, or of one moorlife.gp.GPModel
+        One per input space in use (``method`` ``"gp"``: the one Gaussian process).
     columns : tuple of numpy.ndarray of int
         The output columns of each model.
     spaces : tuple of str
@@ -101,9 +106,13 @@ class Reconstruction:
     input_space : numpy.ndarray of str, shape (n_out,)
     shape, smoothing, log_factor, loo_rmse_units : numpy.ndarray, shape (n_out,)
         Per output: ``q0``, ridge, back-transform factor, leave-one-out RMSE in its own units.
+        For the GP: ``q0`` NaN, the ridge its analogue ``s_n^2 / s_f^2``, the constant factor.
     log_output : numpy.ndarray of bool, shape (n_out,)
     loo_error : numpy.ndarray, shape (m, n_out)
         Leave-one-out residuals in the interpolated (transformed) values.
+    method : {"rbf", "gp"}
+    indicator : {"loo", "sd"}
+        The error indicator of :func:`moorlife.lifecycle.error_indicator`.
     """
 
     models: tuple[rbf.RBFModel, ...]
@@ -120,6 +129,8 @@ class Reconstruction:
     loo_rmse_units: np.ndarray
     log_output: np.ndarray
     loo_error: np.ndarray
+    method: str = "rbf"
+    indicator: str = "loo"
 
     @property
     def n_outputs(self) -> int:
@@ -168,6 +179,8 @@ def fit_outputs(
     forced = None
     if log_damage is not None:
         forced = np.broadcast_to(np.asarray(log_damage, dtype=bool), (int(is_dmg.sum()),))
+    if settings.method == "gp":
+        return _fit_gp(points, values, cols, settings, lo, span, is_dmg, forced, thrust)
     if settings.choose == "per_output":
         return _fit_per_output(points, values, cols, settings, lo, span, is_dmg, forced, thrust)
     logs = np.zeros(len(cols), dtype=bool)
@@ -211,6 +224,9 @@ def predict_outputs(model: Reconstruction, points: npt.ArrayLike, *, chunk_rows:
     numpy.ndarray, shape (n, n_out)
         Back-transformed (with the correction) for ``log10`` outputs.
     """
+    if model.method == "gp":
+        x = space_inputs(model.spaces[0], np.asarray(points, dtype=float), None, None, model.thrust)[0]
+        return gp.predict_gp(model.models[0], x, chunk_rows=chunk_rows)
     if len(model.models) == 1 and model.spaces[0] == names.RBF_SPACE_PAPER:
         return rbf.predict_rbf(model.models[0], points, chunk_rows=chunk_rows)
     x = np.asarray(points, dtype=float)
@@ -407,3 +423,69 @@ def _fit_per_output(
     x5, mask5, lo5, span5 = space_inputs(names.RBF_SPACE_PAPER, points, lo, span)
     space = fit_space(x5, mask5, lo=lo5, span=span5)
     return _combine(models, columns, used, thrust, space, embed(x5, space), "per_output", choice.loo_rmse)
+
+
+def _fit_gp(
+    points: np.ndarray,
+    values: np.ndarray,
+    cols: Sequence[tuple[str, str | None]],
+    settings: RBFSettings,
+    lo: npt.ArrayLike | None,
+    span: npt.ArrayLike | None,
+    is_dmg: np.ndarray,
+    forced: np.ndarray | None,
+    thrust: ThrustCurve | None,
+) -> Reconstruction:
+    """``method: gp``: one Gaussian process per output (:func:`moorlife.gp.fit_gp`) in the paper or thrust space."""
+    g = settings.gp
+    logs = np.zeros(len(cols), dtype=bool)
+    logs[is_dmg] = bool(settings.log_damage) if forced is None else forced
+    y = np.array(values, dtype=float)
+    for j in np.flatnonzero(logs):
+        y[:, j] = _floored(y[:, j], cols[j])
+    name = names.RBF_SPACE_THRUST if g.thrust else names.RBF_SPACE_PAPER
+    x, mask, lo_s, span_s = space_inputs(name, points, lo, span, thrust)
+    model = gp.fit_gp(
+        x,
+        y,
+        is_direction=mask,
+        log_output=logs,
+        lo=lo_s,
+        span=span_s,
+        kernel=g.kernel,
+        length_scale=g.length_scale.astuple(),
+        signal=g.signal.astuple(),
+        noise=g.noise.astuple(),
+        restarts=g.restarts,
+        seed=g.seed,
+        subsample=g.subsample,
+        retransform=g.retransform,
+    )
+    e = model.loo_error.copy()
+    if logs.any():
+        ly = np.log10(y[:, logs])
+        if g.retransform == "predictive":  # the leave-one-out predictive variance holds the noise already
+            factor = np.exp(0.5 * np.log(10.0) ** 2 * model.loo_var[:, logs])
+        else:
+            factor = model.log_factor[logs]
+        e[:, logs] = y[:, logs] - factor * 10.0 ** (ly - model.loo_error[:, logs])
+    x5, mask5, lo5, span5 = space_inputs(names.RBF_SPACE_PAPER, points, lo, span)
+    space = fit_space(x5, mask5, lo=lo5, span=span5)
+    return Reconstruction(
+        models=(model,),
+        columns=(np.arange(len(cols), dtype=np.int64),),
+        spaces=(name,),
+        thrust=thrust,
+        space=space,
+        centres=embed(x5, space),
+        choose="global",
+        input_space=np.full(len(cols), name),
+        shape=np.full(len(cols), np.nan),
+        smoothing=model.noise_var / model.signal_var,
+        log_factor=model.log_factor.copy(),
+        loo_rmse_units=np.sqrt(np.mean(e * e, axis=0)),
+        log_output=logs,
+        loo_error=model.loo_error,
+        method="gp",
+        indicator=g.indicator,
+    )

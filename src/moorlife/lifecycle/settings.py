@@ -8,7 +8,78 @@ from typing import Any
 
 from moorlife.settings import fill_section
 
-__all__ = ["RBFSettings", "rbf_settings"]
+__all__ = ["GPBounds", "GPSettings", "RBFSettings", "rbf_settings"]
+
+
+@dataclass(frozen=True)
+class GPBounds:
+    """Start and bounds of one GP hyperparameter (``lifecycle.rbf.gp.length_scale`` etc.)."""
+
+    initial: float
+    min: float
+    max: float
+
+    def astuple(self) -> tuple[float, float, float]:
+        """``(initial, min, max)``, as :func:`moorlife.gp.fit_gp` takes them."""
+        return (self.initial, self.min, self.max)
+
+
+@dataclass(frozen=True)
+class GPSettings:
+    """The ``lifecycle.rbf.gp`` config section (the Gaussian process of ``method: gp``).
+
+    Attributes
+    ----------
+    kernel : {"ard", "isotropic"}
+    length_scale, signal, noise : GPBounds
+        Start and bounds of each hyperparameter (:func:`moorlife.gp.fit_gp`).
+    restarts, seed, subsample : int
+    thrust : bool
+        Add the rotor thrust ``T(W)`` as an input coordinate.
+    retransform : {"none", "noise", "predictive"}
+        Back-transform of ``log10`` outputs (:mod:`moorlife.gp`).
+    indicator : {"loo", "sd"}
+        Error indicator (:func:`moorlife.lifecycle.error_indicator`).
+    """
+
+    kernel: str
+    length_scale: GPBounds
+    signal: GPBounds
+    noise: GPBounds
+    restarts: int
+    seed: int
+    subsample: int
+    thrust: bool
+    retransform: str
+    indicator: str
+
+    @classmethod
+    def from_section(cls, g: Mapping[str, Any], source: str = "config.yaml") -> GPSettings:
+        """Build from the filled ``lifecycle.rbf.gp`` section.
+
+        Raises
+        ------
+        ValueError
+            If a hyperparameter's ``initial`` is outside ``[min, max]``.
+        """
+        triples = {}
+        for key in ("length_scale", "signal", "noise"):
+            t = GPBounds(float(g[key]["initial"]), float(g[key]["min"]), float(g[key]["max"]))
+            if not t.min <= t.initial <= t.max:
+                raise ValueError(f"{source}: lifecycle.rbf.gp.{key} needs min <= initial <= max, got {g[key]}")
+            triples[key] = t
+        return cls(
+            kernel=str(g["kernel"]),
+            length_scale=triples["length_scale"],
+            signal=triples["signal"],
+            noise=triples["noise"],
+            restarts=int(g["restarts"]),
+            seed=int(g["seed"]),
+            subsample=int(g["subsample"]),
+            thrust=bool(g["thrust"]),
+            retransform=str(g["retransform"]),
+            indicator=str(g["indicator"]),
+        )
 
 
 @dataclass(frozen=True)
@@ -45,6 +116,9 @@ class RBFSettings:
     chunk_rows : int
     outputs : tuple of str
         Variables of ``simulations.zarr`` to rebuild.
+    method : {"rbf", "gp"}
+        The RBF (the paper's) or the Gaussian process of ``gp``.
+    gp : GPSettings
     """
 
     shape_mode: str
@@ -64,6 +138,8 @@ class RBFSettings:
     retransform: str
     chunk_rows: int
     outputs: tuple[str, ...]
+    method: str
+    gp: GPSettings
 
     @classmethod
     def from_config(cls, section: Mapping[str, Any] | None, source: str = "config.yaml") -> RBFSettings:
@@ -98,7 +174,11 @@ class RBFSettings:
             retransform=str(s["retransform"]),
             chunk_rows=int(s["chunk_rows"]),
             outputs=tuple(s["outputs"]),
+            method=str(s["method"]),
+            gp=GPSettings.from_section(s["gp"], source),
         )
+        if out.method == "gp" and out.choose != "global":
+            raise ValueError(f"{source}: lifecycle.rbf.method = 'gp' needs choose = 'global', got {out.choose!r}")
         if not 0 < out.grid_min < out.grid_max:
             raise ValueError(f"{source}: lifecycle.rbf.grid needs 0 < min < max, got {out.grid_min}, {out.grid_max}")
         return out

@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from moorlife import rbf
+from moorlife import gp, rbf
+from moorlife.lifecycle.spaces import space_inputs
 
 __all__ = ["error_indicator", "suggest_states", "life_band"]
 
@@ -31,6 +32,11 @@ def error_indicator(
     residuals, the default when ``loo`` is omitted) every calm state with a tiny, badly
     interpolated damage would look as uncertain as the states that carry the damage.
 
+    A Gaussian-process :class:`moorlife.lifecycle.Reconstruction` with ``indicator == "sd"``
+    (``lifecycle.rbf.gp.indicator``) gives instead ``max_k s_k(x) / scale_k``, ``s_k`` the
+    latent posterior standard deviation of output ``k`` (transformed units; the noise left
+    out, as more simulations cannot reduce it): one triangular solve per hour and output.
+
     Parameters
     ----------
     model : moorlife.rbf.RBFModel or moorlife.lifecycle.Reconstruction
@@ -52,9 +58,13 @@ def error_indicator(
         Normalised distance to the nearest training state.
     """
     dist, idx = rbf.nearest_centre(model, points)
-    typical = _typical_spacing(model)
     s = np.asarray(scale, dtype=float)
     s = np.where(s > 0, s, 1.0)
+    if getattr(model, "indicator", "loo") == "sd":
+        x = space_inputs(model.spaces[0], np.asarray(points, dtype=float), None, None, model.thrust)[0]
+        _, var = gp.predict_latent(model.models[0], x, variance_of=np.ones(s.size, bool))
+        return np.max(np.sqrt(var) / s, axis=1), dist
+    typical = _typical_spacing(model)
     e = np.asarray(model.loo_error if loo is None else loo, dtype=float)
     worst = np.max(np.abs(e) / s, axis=1)  # (m,)
     if population:

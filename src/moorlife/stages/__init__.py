@@ -118,13 +118,16 @@ def thrust_for(settings: Any, platform_cfg: str | os.PathLike[str] | None) -> An
     """The thrust curve of ``config/platform.yaml`` when the RBF fit may use the thrust space.
 
     ``settings`` is a :class:`moorlife.lifecycle.RBFSettings`; None unless ``choose`` is
-    ``per_output`` with ``"thrust"`` among its ``spaces`` (the lifecycle and rounds stages).
+    ``per_output`` with ``"thrust"`` among its ``spaces``, or ``method`` is ``gp`` with
+    ``gp.thrust`` (the lifecycle and rounds stages).
     """
     from moorlife import lifecycle, names
     from moorlife.io.platform import read_platform_config
 
-    if settings.choose != "per_output" or names.RBF_SPACE_THRUST not in settings.spaces:
+    gp_thrust = settings.method == "gp" and settings.gp.thrust
+    if not gp_thrust and (settings.choose != "per_output" or names.RBF_SPACE_THRUST not in settings.spaces):
         return None
     if platform_cfg is None:
-        raise ValueError("lifecycle.rbf.spaces has 'thrust': the stage needs platform_cfg (config/platform.yaml)")
+        key = "gp.thrust is true" if gp_thrust else "spaces has 'thrust'"
+        raise ValueError(f"lifecycle.rbf.{key}: the stage needs platform_cfg (config/platform.yaml)")
     return lifecycle.thrust_curve(read_platform_config(platform_cfg), str(platform_cfg))

@@ -1,0 +1,315 @@
+"""The fit: hyperparameters by scikit-learn's marginal likelihood, then the exact conditioning on every state."""
+
+from __future__ import annotations
+
+import logging
+import warnings
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+import scipy.linalg as sla
+
+from moorlife.rbf.kernels import _gaussian_block
+from moorlife.space import Space, as_points, fit_space, sq_dist_block
+
+__all__ = ["GPModel", "GP_KERNELS", "GP_RETRANSFORMS", "chord_embed", "embedded_names", "correlation", "fit_gp"]
+
+log = logging.getLogger("moorlife.gp")
+
+#: Kernels: one length scale per embedded coordinate (``ard``), or one for all (``isotropic``).
+GP_KERNELS: tuple[str, ...] = ("ard", "isotropic")
+#: Back-transforms of a ``log10`` output (module :mod:`moorlife.gp`).
+GP_RETRANSFORMS: tuple[str, ...] = ("none", "noise", "predictive")
+
+_LN10_SQ = float(np.log(10.0) ** 2)
+
+
+@dataclass(frozen=True)
+class GPModel:
+    """A fitted multi-output Gaussian process (one set of hyperparameters per output; immutable arrays).
+
+    The posterior mean of output ``j`` at a point ``x`` (embedded by :func:`chord_embed`) is
+    ``mean_j + sum_i rho_j(x, c_i) w_ij`` with ``rho_j(x, c) = exp(-|(x - c) / l_j|^2 / 2)`` the
+    unit-amplitude Gaussian correlation; its latent variance is
+    ``signal_var_j (1 - rho^T B_j^-1 rho)`` with ``B_j = R_j + (noise_var_j / signal_var_j) I``
+    (``R_j`` the correlation matrix of the training states), whose Cholesky factor is ``chol[j]``.
+
+    Attributes
+    ----------
+    space : moorlife.space.Space
+        The normalisation of the physical inputs (scalars by range, directions in degrees).
+    centres : numpy.ndarray, shape (m, p)
+        Embedded training states (:func:`chord_embed`).
+    length_scale : numpy.ndarray, shape (n_out, p)
+        Length scale of every output along every embedded coordinate.
+    signal_var, noise_var : numpy.ndarray, shape (n_out,)
+        Signal and noise variances in the interpolated (transformed) units.
+    mean : numpy.ndarray, shape (n_out,)
+        The constant prior mean (the training mean of the transformed values).
+    weights : numpy.ndarray, shape (m, n_out)
+        ``B_j^-1 (y_j - mean_j)``.
+    chol : numpy.ndarray, shape (n_out, m, m)
+        Lower Cholesky factor of every ``B_j``.
+    log_output : numpy.ndarray of bool, shape (n_out,)
+    loo_error : numpy.ndarray, shape (m, n_out)
+        Closed-form leave-one-out residuals in the transformed units.
+    loo_var : numpy.ndarray, shape (m, n_out)
+        Leave-one-out predictive variance of a new realisation (noise included) at each training state.
+    log_factor : numpy.ndarray, shape (n_out,)
+        The constant back-transform factor of the ``log10`` outputs (1.0 for linear outputs and
+        ``retransform="none"``): ``exp((ln 10)^2 noise_var / 2)``.
+    retransform : str
+        One of :data:`GP_RETRANSFORMS`.
+    """
+
+    space: Space
+    centres: np.ndarray
+    length_scale: np.ndarray
+    signal_var: np.ndarray
+    noise_var: np.ndarray
+    mean: np.ndarray
+    weights: np.ndarray
+    chol: np.ndarray
+    log_output: np.ndarray
+    loo_error: np.ndarray
+    loo_var: np.ndarray
+    log_factor: np.ndarray
+    retransform: str
+
+    @property
+    def n_outputs(self) -> int:
+        return int(self.weights.shape[1])
+
+
+def chord_embed(points: npt.ArrayLike, space: Space) -> np.ndarray:
+    """Physical points in the GP's input space: scalars by range, each direction as ``(cos, sin) / pi``.
+
+    A direction on the circle of radius ``1 / pi`` has the chord distance ``(2 / pi) sin(d / 2)``
+    to another at angle ``d``: the folded difference of :mod:`moorlife.space` (``d / pi``, 180 deg
+    -> 1) to first order, and a Euclidean distance, so that the Gaussian kernel stays positive
+    definite (the folded difference does not guarantee it).
+
+    Parameters
+    ----------
+    points : array_like, shape (n, d)
+        Physical units, directions in degrees.
+    space : moorlife.space.Space
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, d + n_directions)
+        The scalars in their order, then ``cos`` and ``sin`` of each direction.
+    """
+    x = as_points(points)
+    if x.shape[1] != space.scale.size:
+        raise ValueError(f"points have {x.shape[1]} columns, the space has {space.scale.size}")
+    isdir = space.is_direction
+    scal = (x[:, ~isdir] - space.lower[~isdir]) / space.scale[~isdir]
+    ang = np.deg2rad(x[:, isdir])
+    return np.ascontiguousarray(np.hstack([scal, np.cos(ang) / np.pi, np.sin(ang) / np.pi]))
+
+
+def embedded_names(variables: Sequence[str], is_direction: npt.ArrayLike) -> list[str]:
+    """Names of the coordinates of :func:`chord_embed`: the scalars, then ``cos_<dir>`` and ``sin_<dir>``."""
+    isdir = np.asarray(is_direction, dtype=bool)
+    v = list(variables)
+    dirs = [n for n, d in zip(v, isdir) if d]
+    return [n for n, d in zip(v, isdir) if not d] + [f"cos_{n}" for n in dirs] + [f"sin_{n}" for n in dirs]
+
+
+def correlation(za: np.ndarray, zb: np.ndarray, length_scale: np.ndarray) -> np.ndarray:
+    """The Gaussian correlation ``exp(-|(a - b) / l|^2 / 2)`` of embedded points (rows of ``za``, ``zb``).
+
+    Parameters
+    ----------
+    za : numpy.ndarray, shape (n, p)
+    zb : numpy.ndarray, shape (m, p)
+    length_scale : numpy.ndarray, shape (p,)
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, m)
+    """
+    inv = 1.0 / np.asarray(length_scale, dtype=float)
+    a = np.ascontiguousarray(za * inv)
+    b_t = np.ascontiguousarray((zb * inv).T)
+    d2 = np.empty((a.shape[0], b_t.shape[1]))
+    sq_dist_block(a, b_t, np.zeros(a.shape[1], dtype=np.bool_), d2)
+    out = np.empty_like(d2)
+    _gaussian_block(d2, 0.5, out, np.empty_like(d2))
+    return out
+
+
+def fit_gp(
+    points: npt.ArrayLike,
+    values: npt.ArrayLike,
+    *,
+    is_direction: npt.ArrayLike,
+    log_output: bool | npt.ArrayLike = False,
+    lo: npt.ArrayLike | None = None,
+    span: npt.ArrayLike | None = None,
+    kernel: str = "ard",
+    length_scale: tuple[float, float, float] = (0.3, 0.01, 100.0),
+    signal: tuple[float, float, float] = (1.0, 1e-3, 1e3),
+    noise: tuple[float, float, float] = (1e-2, 1e-8, 1.0),
+    restarts: int = 0,
+    seed: int = 0,
+    subsample: int = 0,
+    retransform: str = "noise",
+) -> GPModel:
+    """Fit one Gaussian process with a noise term per output column.
+
+    For each output, scikit-learn's :class:`~sklearn.gaussian_process.GaussianProcessRegressor`
+    (``normalize_y=True``, kernel ``C * RBF(l) + WhiteKernel``) maximises the log marginal
+    likelihood over the amplitude, the length scales and the noise, on ``subsample`` training
+    states (drawn with ``seed``; 0 or ``>= m``: all of them) with ``restarts`` extra starts
+    (drawn with ``seed``). With those hyperparameters the process is conditioned on every
+    training state (one Cholesky factorisation per output), which also gives the leave-one-out
+    residuals in closed form (Rasmussen & Williams 2006, eq. 5.12):
+    ``r_i = [B^-1 (y - mean)]_i / [B^-1]_ii`` with the noise in ``B``.
+
+    Parameters
+    ----------
+    points : array_like, shape (m, d)
+        Training states, physical units (directions in degrees).
+    values : array_like, shape (m, n_out) or (m,)
+    is_direction : array_like of bool, shape (d,)
+    log_output : bool or array_like of bool (n_out,)
+        Model ``log10`` of these outputs (they must be positive).
+    lo, span : array_like (d,), optional
+        Normalisation of the scalars (:func:`moorlife.space.fit_space`); default the points'.
+    kernel : {"ard", "isotropic"}
+        One length scale per embedded coordinate, or one for all.
+    length_scale, signal, noise : tuple of float
+        ``(initial, min, max)`` of the length scales (embedded units, see :func:`chord_embed`),
+        of the signal variance and of the noise variance (both as fractions of the variance of
+        the subsample's transformed values).
+    restarts : int
+        Extra optimiser starts (``n_restarts_optimizer``).
+    seed : int
+        The subsample and the restarts (``random_state``).
+    subsample : int
+        Training states of the hyperparameter fit (0: all).
+    retransform : {"none", "noise", "predictive"}
+        Back-transform of the ``log10`` outputs (:mod:`moorlife.gp`).
+
+    Returns
+    -------
+    GPModel
+
+    Raises
+    ------
+    ValueError
+        On non-finite values, a non-positive value of a ``log10`` output, an unknown kernel or
+        back-transform, or inconsistent bounds.
+    """
+    from sklearn.exceptions import ConvergenceWarning
+    from sklearn.gaussian_process import GaussianProcessRegressor
+    from sklearn.gaussian_process.kernels import RBF, WhiteKernel
+    from sklearn.gaussian_process.kernels import ConstantKernel as C
+
+    if kernel not in GP_KERNELS:
+        raise ValueError(f"unknown GP kernel {kernel!r}; expected one of {list(GP_KERNELS)}")
+    if retransform not in GP_RETRANSFORMS:
+        raise ValueError(f"unknown GP back-transform {retransform!r}; expected one of {list(GP_RETRANSFORMS)}")
+    for name, (init, low, high) in (("length_scale", length_scale), ("signal", signal), ("noise", noise)):
+        if not 0 < low <= init <= high:
+            raise ValueError(f"GP {name}: need 0 < min <= initial <= max, got {init}, {low}, {high}")
+    x = as_points(points)
+    y = _checked(values, x.shape[0])
+    logs = np.broadcast_to(np.asarray(log_output, dtype=bool), (y.shape[1],)).copy()
+    if logs.any():
+        if np.any(y[:, logs] <= 0):
+            row, col = np.argwhere(y[:, logs] <= 0)[0]
+            raise ValueError(
+                f"output {int(np.flatnonzero(logs)[col])} is log-transformed but row {row} is not positive"
+            )
+        y[:, logs] = np.log10(y[:, logs])
+    space = fit_space(x, is_direction, lo=lo, span=span)
+    z = chord_embed(x, space)
+    m, p = z.shape
+    n_out = y.shape[1]
+    sub = np.arange(m)
+    if 0 < subsample < m:
+        sub = np.sort(np.random.default_rng(seed).choice(m, int(subsample), replace=False))
+    ls0 = np.full(p, length_scale[0]) if kernel == "ard" else length_scale[0]
+    ls = np.empty((n_out, p))
+    sig, noi, mean = np.empty(n_out), np.empty(n_out), y.mean(axis=0)
+    for j in range(n_out):
+        k = C(signal[0], signal[1:]) * RBF(ls0, length_scale[1:]) + WhiteKernel(noise[0], noise[1:])
+        gpr = GaussianProcessRegressor(k, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", ConvergenceWarning)
+            gpr.fit(z[sub], y[sub, j])
+        for w in caught:
+            if issubclass(w.category, ConvergenceWarning):
+                log.info("GP output %d: %s", j, str(w.message).splitlines()[0])
+        kf = gpr.kernel_
+        scale2 = float(gpr._y_train_std) ** 2
+        ls[j] = np.broadcast_to(kf.k1.k2.length_scale, (p,))
+        sig[j] = kf.k1.k1.constant_value * scale2
+        noi[j] = kf.k2.noise_level * scale2
+    return _condition(space, z, y, ls, sig, noi, mean, logs, retransform)
+
+
+def _checked(values: npt.ArrayLike, m: int) -> np.ndarray:
+    """The values as a finite float64 ``(m, n_out)`` copy."""
+    y = np.array(values, dtype=float)
+    if y.ndim == 1:
+        y = y[:, None]
+    if y.shape[0] != m:
+        raise ValueError(f"values have {y.shape[0]} rows, points have {m}")
+    if not np.all(np.isfinite(y)):
+        row, col = np.argwhere(~np.isfinite(y))[0]
+        raise ValueError(f"values are not finite: output {col}, row {row} = {y[row, col]!r}")
+    return y
+
+
+def _condition(
+    space: Space,
+    z: np.ndarray,
+    y: np.ndarray,
+    ls: np.ndarray,
+    sig: np.ndarray,
+    noi: np.ndarray,
+    mean: np.ndarray,
+    logs: np.ndarray,
+    retransform: str,
+) -> GPModel:
+    """Condition every output's process on all training states: weights, Cholesky factors, leave-one-out."""
+    m, n_out = y.shape
+    weights = np.empty_like(y)
+    loo = np.empty_like(y)
+    loo_var = np.empty_like(y)
+    chol = np.empty((n_out, m, m))
+    for j in range(n_out):
+        b = correlation(z, z, ls[j])
+        b[np.diag_indices(m)] += noi[j] / sig[j]
+        chol[j] = sla.cholesky(b, lower=True, check_finite=False)
+        weights[:, j] = sla.cho_solve((chol[j], True), y[:, j] - mean[j], check_finite=False)
+        l_inv, info = sla.lapack.dtrtri(chol[j], lower=1)
+        if info != 0:
+            raise np.linalg.LinAlgError(f"output {j}: the GP's Cholesky factor is singular (dtrtri info {info})")
+        d = np.einsum("ij,ij->j", l_inv, l_inv)  # diag(B^-1) = column sums of squares of L^-1
+        loo[:, j] = weights[:, j] / d
+        loo_var[:, j] = sig[j] / d
+    factor = np.ones(n_out)
+    if retransform != "none":
+        factor[logs] = np.exp(0.5 * _LN10_SQ * noi[logs])
+    return GPModel(
+        space=space,
+        centres=z,
+        length_scale=ls,
+        signal_var=sig,
+        noise_var=noi,
+        mean=mean,
+        weights=weights,
+        chol=chol,
+        log_output=logs,
+        loo_error=loo,
+        loo_var=loo_var,
+        log_factor=factor,
+        retransform=retransform,
+    )

@@ -1,0 +1,182 @@
+"""Tests of moorlife.gp (the Gaussian process with a noise term, lifecycle.rbf.method: gp) on constructed data."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from sklearn.gaussian_process import GaussianProcessRegressor
+from sklearn.gaussian_process.kernels import RBF, WhiteKernel
+from sklearn.gaussian_process.kernels import ConstantKernel as C
+
+from moorlife import gp, lifecycle, names, rbf
+from moorlife.space import direction_mask
+
+MASK = direction_mask()
+
+
+def _states(n: int, seed: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    return np.column_stack(
+        [
+            rng.uniform(0, 25, n),
+            rng.uniform(0, 360, n),
+            rng.uniform(0.3, 6, n),
+            rng.uniform(4, 18, n),
+            rng.uniform(0, 360, n),
+        ]
+    )
+
+
+def _smooth(x: np.ndarray) -> np.ndarray:
+    """A smooth 5-D surface: Hs, Tp, the wave direction on the circle, the wind speed."""
+    w, _, hs, tp, alpha = x.T
+    return (
+        1.0 + 0.3 * hs**2 + 0.5 * np.exp(-(((tp - 11.0) / 4.0) ** 2)) + 0.4 * np.cos(np.deg2rad(alpha)) + 0.002 * w**2
+    )
+
+
+def test_chord_embedding_is_circular_and_matches_the_folded_distance_to_first_order():
+    space = rbf.fit_space(_states(50, 0), MASK)
+    pts = np.array([[5.0, 350.0, 1.0, 8.0, 0.0], [5.0, 10.0, 1.0, 8.0, 0.0], [5.0, 30.0, 1.0, 8.0, 0.0]])
+    z = gp.chord_embed(pts, space)
+    assert z.shape == (3, 7)
+    d01, d12 = np.linalg.norm(z[0] - z[1]), np.linalg.norm(z[1] - z[2])
+    assert d01 == pytest.approx(d12, rel=1e-12)  # 350 -> 10 deg across north, as 10 -> 30
+    folded = rbf.squared_distances(rbf.normalise(pts[:2], space), rbf.normalise(pts[1:2], space), MASK)[0, 0]
+    assert d01 == pytest.approx(np.sqrt(folded), rel=0.01)  # 20 deg: chord ~ arc
+    assert gp.embedded_names(names.METOCEAN_VARS, MASK) == [
+        "wind_speed",
+        "hs",
+        "tp",
+        "cos_wind_dir",
+        "cos_wave_dir",
+        "sin_wind_dir",
+        "sin_wave_dir",
+    ]
+
+
+def test_mean_and_variance_equal_scikit_learns_predict():
+    x = _states(60, 1)
+    y = _smooth(x) + np.random.default_rng(2).normal(0, 0.2, 60)
+    model = gp.fit_gp(x, y, is_direction=MASK)
+    kern = C(model.signal_var[0] / y.var()) * RBF(model.length_scale[0]) + WhiteKernel(model.noise_var[0] / y.var())
+    ref = GaussianProcessRegressor(kern, alpha=0.0, normalize_y=True, optimizer=None).fit(
+        gp.chord_embed(x, model.space), y
+    )
+    xq = _states(40, 3)
+    mu, var = gp.predict_latent(model, xq, variance_of=[True])
+    mu_ref, sd_ref = ref.predict(gp.chord_embed(xq, model.space), return_std=True)
+    np.testing.assert_allclose(mu[:, 0], mu_ref, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(var[:, 0] + model.noise_var[0], sd_ref**2, rtol=1e-8)  # sklearn's includes the noise
+
+
+def test_closed_form_leave_one_out_equals_brute_force_refits():
+    """R&W eq. 5.12 against scikit-learn refitted without each state (same hyperparameters and mean)."""
+    x = _states(40, 4)
+    y = np.column_stack([_smooth(x), np.exp(0.3 * x[:, 2])]) * np.random.default_rng(5).lognormal(0, 0.1, (40, 2))
+    model = gp.fit_gp(x, y, is_direction=MASK, log_output=[False, True])
+    z = gp.chord_embed(x, model.space)
+    ty = np.column_stack([y[:, 0], np.log10(y[:, 1])])
+    for j in range(2):
+        kern = C(model.signal_var[j], "fixed") * RBF(model.length_scale[j], "fixed") + WhiteKernel(
+            model.noise_var[j], "fixed"
+        )
+        brute = np.empty(40)
+        var = np.empty(40)
+        for i in range(40):
+            keep = np.arange(40) != i
+            ref = GaussianProcessRegressor(kern, alpha=0.0, optimizer=None).fit(z[keep], ty[keep, j] - model.mean[j])
+            mu, sd = ref.predict(z[i : i + 1], return_std=True)
+            brute[i], var[i] = ty[i, j] - model.mean[j] - mu[0], sd[0] ** 2
+        np.testing.assert_allclose(model.loo_error[:, j], brute, rtol=1e-7, atol=1e-10)
+        np.testing.assert_allclose(model.loo_var[:, j], var, rtol=1e-7)
+
+
+def test_noisy_surface_recovered_better_than_by_exact_interpolation():
+    """5-D, noise sd 0.25 on a surface of range ~10: the GP's error to the truth well below the exact RBF's."""
+    x, xq = _states(200, 6), _states(500, 7)
+    y = _smooth(x) + np.random.default_rng(8).normal(0, 0.25, 200)
+    model = gp.fit_gp(x, y, is_direction=MASK)
+    exact = rbf.fit_rbf(x, y, is_direction=MASK, shapes=rbf.shape_grid(0.05, 1.0, 10))
+    err_gp = np.sqrt(np.mean((gp.predict_gp(model, xq)[:, 0] - _smooth(xq)) ** 2))
+    err_rbf = np.sqrt(np.mean((rbf.predict_rbf(exact, xq)[:, 0] - _smooth(xq)) ** 2))
+    assert err_gp < 0.6 * err_rbf
+    assert np.sqrt(model.noise_var[0]) == pytest.approx(0.25, rel=0.25)  # the noise is recognised as noise
+    assert np.sqrt(np.mean(model.loo_error**2)) < np.sqrt(np.mean(exact.loo_error**2))
+
+
+def test_one_dimensional_noisy_function():
+    rng = np.random.default_rng(9)
+    x = np.sort(rng.uniform(0, 1, 60))[:, None]
+    f = lambda t: np.sin(6 * t[:, 0])
+    y = f(x) + rng.normal(0, 0.1, 60)
+    model = gp.fit_gp(x, y, is_direction=[False])
+    xq = np.linspace(0, 1, 301)[:, None]
+    err_gp = np.sqrt(np.mean((gp.predict_gp(model, xq)[:, 0] - f(xq)) ** 2))
+    exact = rbf.fit_rbf(x, y, is_direction=[False], shapes=rbf.shape_grid(0.002, 0.2, 12))
+    err_rbf = np.sqrt(np.mean((rbf.predict_rbf(exact, xq)[:, 0] - f(xq)) ** 2))
+    assert err_gp < 0.05 and err_gp < 0.5 * err_rbf
+
+
+@pytest.mark.parametrize("retransform", ["noise", "predictive"])
+def test_back_transform_of_log_output_is_unbiased(retransform):
+    """log10 D = g(x) + N(0, s^2): the mean of E[D | x] over many hours matches the sample mean of D.
+
+    The training noise is standardised (mean 0, sd s exactly), so that what is tested is the
+    back-transform, not the sampling error of 300 draws.
+    """
+    s = 0.2  # 10**N(0, 0.2^2): median / mean = exp(-(ln 10)^2 s^2 / 2) = 0.90
+    g = lambda t: -6.0 + 0.08 * t[:, 2] + 0.05 * np.cos(np.deg2rad(t[:, 4]))
+    rng = np.random.default_rng(10)
+    x = _states(300, 11)
+    e = rng.normal(0, 1, 300)
+    d = 10.0 ** (g(x) + s * (e - e.mean()) / e.std())
+    xq = _states(4000, 12)
+    truth = 10.0 ** (g(xq)[:, None] + rng.normal(0, s, (4000, 25)))  # 25 realisations per hour
+    model = gp.fit_gp(x, d, is_direction=MASK, log_output=True, retransform=retransform)
+    median = gp.fit_gp(x, d, is_direction=MASK, log_output=True, retransform="none")
+    ratio = gp.predict_gp(model, xq).sum() / truth.mean(axis=1).sum()
+    ratio_none = gp.predict_gp(median, xq).sum() / truth.mean(axis=1).sum()
+    assert ratio == pytest.approx(1.0, abs=0.02)
+    assert ratio_none == pytest.approx(np.exp(-0.5 * np.log(10) ** 2 * s**2), abs=0.02)  # the median
+    assert model.log_factor[0] == pytest.approx(np.exp(0.5 * np.log(10) ** 2 * model.noise_var[0]))
+
+
+def test_predictive_back_transform_adds_the_latent_variance():
+    x = _states(80, 13)
+    d = 10.0 ** (-5 + 0.2 * x[:, 2] + np.random.default_rng(14).normal(0, 0.1, 80))
+    m_noise = gp.fit_gp(x, d, is_direction=MASK, log_output=True, retransform="noise")
+    m_pred = gp.fit_gp(x, d, is_direction=MASK, log_output=True, retransform="predictive")
+    xq = np.vstack([x[:5], _states(20, 15)])
+    mu, var = gp.predict_latent(m_pred, xq, variance_of=[True])
+    expected = 10.0 ** mu[:, 0] * np.exp(0.5 * np.log(10) ** 2 * (m_pred.noise_var[0] + var[:, 0]))
+    np.testing.assert_allclose(gp.predict_gp(m_pred, xq)[:, 0], expected, rtol=1e-12)
+    assert np.all(gp.predict_gp(m_pred, xq) > gp.predict_gp(m_noise, xq))
+    far = gp.predict_latent(m_pred, xq[:5] + [[0, 0, 6.0, 0, 0]], variance_of=[True])[1]  # Hs beyond the data
+    assert np.all(var[:5, 0] < far[:, 0])  # smaller at the training states than away from them
+
+
+def test_fit_and_prediction_are_bit_identical_and_chunk_independent():
+    x = _states(120, 16)
+    y = np.column_stack([_smooth(x), np.exp(0.4 * x[:, 2])]) * np.random.default_rng(17).lognormal(0, 0.2, (120, 2))
+    kw = dict(is_direction=MASK, log_output=[False, True], subsample=60, restarts=1, seed=3)
+    a, b = gp.fit_gp(x, y, **kw), gp.fit_gp(x, y, **kw)
+    for f in ("length_scale", "signal_var", "noise_var", "mean", "weights", "chol", "loo_error", "log_factor"):
+        np.testing.assert_array_equal(getattr(a, f), getattr(b, f), err_msg=f)
+    xq = _states(700, 18)
+    p = gp.predict_gp(a, xq)
+    np.testing.assert_array_equal(p, gp.predict_gp(b, xq, chunk_rows=37))
+    other = gp.fit_gp(x, y, **{**kw, "seed": 4})  # another subsample: other hyperparameters
+    assert not np.array_equal(other.length_scale, a.length_scale)
+
+
+def test_bad_settings_are_refused():
+    x = _states(20, 19)
+    with pytest.raises(ValueError, match="kernel"):
+        gp.fit_gp(x, x[:, 2], is_direction=MASK, kernel="matern")
+    with pytest.raises(ValueError, match="not positive"):
+        gp.fit_gp(x, x[:, 2] - 3, is_direction=MASK, log_output=True)
+    with pytest.raises(ValueError, match="choose = 'global'"):
+        lifecycle.RBFSettings.from_config({"method": "gp", "choose": "per_output"})
+    with pytest.raises(ValueError, match="min <= initial <= max"):
+        lifecycle.RBFSettings.from_config({"method": "gp", "gp": {"noise": {"initial": 2.0}}})
