@@ -269,6 +269,7 @@ def integrate(
         axis=np.ascontiguousarray(model.strip_axis.T),
         drag_normal=model.strip_cdn,
         drag_axial=model.strip_cda,
+        loads=np.zeros((6, model.strip_pos.shape[0])),
     )
     rotor = Rotor(
         wind_speed=model.thrust_speed,

@@ -100,6 +100,8 @@ class Strips(NamedTuple):
     drag_normal: np.ndarray
     #: (ns,) axial drag factor, kg/m
     drag_axial: np.ndarray
+    #: (6, ns) force and moment of each strip (scratch of :func:`_rhs`)
+    loads: np.ndarray
 
 
 class Rotor(NamedTuple):
@@ -236,7 +238,7 @@ def _moor_generalised(q, fmoor, fair, out):  # pragma: no cover - numba
             out[b, 5] += px * fy - py * fx
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _rhs(b, t_frac, j, y, dy, held, F, body, rad, strips, rotor, wave):  # pragma: no cover - numba
     """Time derivative ``dy`` of case ``b``'s state ``y = (q, v, xr, zf)`` at ``t = (j + t_frac) dt``.
 
@@ -281,7 +283,8 @@ def _rhs(b, t_frac, j, y, dy, held, F, body, rad, strips, rotor, wave):  # pragm
         for e in range(6):
             acc += rb[r, e] * v[e]
         dxr[r] = acc
-    # Morison drag on the relative velocity; strips along the last axis (unit stride, SIMD)
+    # Morison drag on the relative velocity; strips along the last axis (unit stride, SIMD): the
+    # loads of the strips first, then their sums in strip order (a sum cannot be vectorised)
     ns = spos.shape[1]
     if ns > 0:
         tk = (j + t_frac) / kin_every
@@ -291,8 +294,8 @@ def _rhs(b, t_frac, j, y, dy, held, F, body, rad, strips, rotor, wave):  # pragm
         k1 = kin[b, jk + 1]
         vx, vy, vz = v[0], v[1], v[2]
         wx, wy, wz = v[3], v[4], v[5]
-        f0 = f1 = f2 = m3 = m4 = m5 = 0.0
-        for s in range(ns):
+        sl = strips.loads
+        for s in range(ns):  # every strip's load, independently (vectorised)
             px, py, pz = spos[0, s], spos[1, s], spos[2, s]
             ux = (1 - wk) * k0[0, s] + wk * k1[0, s] - (vx + wy * pz - wz * py)
             uy = (1 - wk) * k0[1, s] + wk * k1[1, s] - (vy + wz * px - wx * pz)
@@ -305,12 +308,20 @@ def _rhs(b, t_frac, j, y, dy, held, F, body, rad, strips, rotor, wave):  # pragm
             fx = scdn[s] * un * nx + ca * ax
             fy = scdn[s] * un * ny + ca * ay
             fz = scdn[s] * un * nz + ca * az
-            f0 += fx
-            f1 += fy
-            f2 += fz
-            m3 += py * fz - pz * fy
-            m4 += pz * fx - px * fz
-            m5 += px * fy - py * fx
+            sl[0, s] = fx
+            sl[1, s] = fy
+            sl[2, s] = fz
+            sl[3, s] = py * fz - pz * fy
+            sl[4, s] = pz * fx - px * fz
+            sl[5, s] = px * fy - py * fx
+        f0 = f1 = f2 = m3 = m4 = m5 = 0.0
+        for s in range(ns):  # their sums, in strip order
+            f0 += sl[0, s]
+            f1 += sl[1, s]
+            f2 += sl[2, s]
+            m3 += sl[3, s]
+            m4 += sl[4, s]
+            m5 += sl[5, s]
         F[0] += f0
         F[1] += f1
         F[2] += f2
