@@ -166,7 +166,7 @@ def _kx_times(sq, sa, sg, Kz, rx, i, out):
     out[2] = qa * sq[i - 1, 2] + sg[i - 1] * az + qb * sq[i, 2] + sg[i] * bz - Kz[i] * rx[i, 2]
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, inline="always", error_model="numpy")
 def _solve_blocks(S, Winv, b, x, N, tmp):
     """Solve the factorised block-tridiagonal system (interior nodes 1..N-1)."""
     for a in range(3):
@@ -187,7 +187,7 @@ def _solve_blocks(S, Winv, b, x, N, tmp):
             x[i, a] = Winv[i, a, 0] * tmp[0] + Winv[i, a, 1] * tmp[1] + Winv[i, a, 2] * tmp[2]
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, inline="always", error_model="numpy")
 def _factor(ws, S, Winv, D, tmpm, N, cs, cg, cz):
     """Coupling blocks and block-Thomas inverses of ``M + cz C + (segments) + cg Kz``.
 
@@ -310,7 +310,7 @@ def _ros2_step(r, v, rf0, vf0, rf1, vf1, h, p, w):
         v[N, a] = vf1[a]
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, inline="always", error_model="numpy")
 def _bdf2_step(r, v, rp, vp, rf1, vf1, h, p, w):
     """One linearly implicit BDF2 step of one line (constant step h; rp, vp the previous state).
 

@@ -40,7 +40,7 @@ def _inv3(A, out):
 
 
 # --------------------------------------------------------------------------- forces
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, inline="always", error_model="numpy")
 def _node_forces(r, v, p, hb, jac, ws):
     """Net node forces and, if ``jac``, the pieces of the implicit matrix.
 

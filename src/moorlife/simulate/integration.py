@@ -235,7 +235,7 @@ def integrate(
     stiff = model.stiffness + (model.mooring_stiffness if linear else 0.0)
     coupled = not linear
     ker, stride, kpi, kpj = _kernel_at(model, dt)
-    hist = np.zeros((nb, stride, 6, 2 * ker.shape[1]))
+    hist = np.zeros((stride, 6, 2 * ker.shape[1], nb))
     static = np.asarray(model.static_load, dtype=float)
     state = State(
         displacement=q,
@@ -246,6 +246,7 @@ def integrate(
         held_load=fmoor6,
         acceleration=acc,
         history=hist,
+        convolution=np.zeros((ker.shape[0], nb)),
         fairlead_position=r_f,
         fairlead_velocity=v_f,
     )
@@ -268,6 +269,7 @@ def integrate(
         axis=np.ascontiguousarray(model.strip_axis.T),
         drag_normal=model.strip_cdn,
         drag_axial=model.strip_cda,
+        loads=np.zeros((6, model.strip_pos.shape[0])),
     )
     rotor = Rotor(
         wind_speed=model.thrust_speed,

@@ -39,8 +39,10 @@ class State(NamedTuple):
     held_load: np.ndarray
     #: (B, 6) accelerations at the start of the step (scratch)
     acceleration: np.ndarray
-    #: (B, stride, 6, 2 nlag) velocity history of the radiation convolution (:func:`_convolve`)
+    #: (stride, 6, 2 nlag, B) velocity history of the radiation convolution (:func:`_convolve`)
     history: np.ndarray
+    #: (npairs, B) sums of the radiation convolution (scratch of :func:`_convolve`)
+    convolution: np.ndarray
     #: (B, 3, 3) fairlead positions predicted for the end of the step (scratch)
     fairlead_position: np.ndarray
     #: (B, 3, 3) fairlead velocities (scratch)
@@ -98,6 +100,8 @@ class Strips(NamedTuple):
     drag_normal: np.ndarray
     #: (ns,) axial drag factor, kg/m
     drag_axial: np.ndarray
+    #: (6, ns) force and moment of each strip (scratch of :func:`_rhs`)
+    loads: np.ndarray
 
 
 class Rotor(NamedTuple):
@@ -234,7 +238,7 @@ def _moor_generalised(q, fmoor, fair, out):  # pragma: no cover - numba
             out[b, 5] += px * fy - py * fx
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _rhs(b, t_frac, j, y, dy, held, F, body, rad, strips, rotor, wave):  # pragma: no cover - numba
     """Time derivative ``dy`` of case ``b``'s state ``y = (q, v, xr, zf)`` at ``t = (j + t_frac) dt``.
 
@@ -279,7 +283,8 @@ def _rhs(b, t_frac, j, y, dy, held, F, body, rad, strips, rotor, wave):  # pragm
         for e in range(6):
             acc += rb[r, e] * v[e]
         dxr[r] = acc
-    # Morison drag on the relative velocity; strips along the last axis (unit stride, SIMD)
+    # Morison drag on the relative velocity; strips along the last axis (unit stride, SIMD): the
+    # loads of the strips first, then their sums in strip order (a sum cannot be vectorised)
     ns = spos.shape[1]
     if ns > 0:
         tk = (j + t_frac) / kin_every
@@ -289,8 +294,8 @@ def _rhs(b, t_frac, j, y, dy, held, F, body, rad, strips, rotor, wave):  # pragm
         k1 = kin[b, jk + 1]
         vx, vy, vz = v[0], v[1], v[2]
         wx, wy, wz = v[3], v[4], v[5]
-        f0 = f1 = f2 = m3 = m4 = m5 = 0.0
-        for s in range(ns):
+        sl = strips.loads
+        for s in range(ns):  # every strip's load, independently (vectorised)
             px, py, pz = spos[0, s], spos[1, s], spos[2, s]
             ux = (1 - wk) * k0[0, s] + wk * k1[0, s] - (vx + wy * pz - wz * py)
             uy = (1 - wk) * k0[1, s] + wk * k1[1, s] - (vy + wz * px - wx * pz)
@@ -303,12 +308,20 @@ def _rhs(b, t_frac, j, y, dy, held, F, body, rad, strips, rotor, wave):  # pragm
             fx = scdn[s] * un * nx + ca * ax
             fy = scdn[s] * un * ny + ca * ay
             fz = scdn[s] * un * nz + ca * az
-            f0 += fx
-            f1 += fy
-            f2 += fz
-            m3 += py * fz - pz * fy
-            m4 += pz * fx - px * fz
-            m5 += px * fy - py * fx
+            sl[0, s] = fx
+            sl[1, s] = fy
+            sl[2, s] = fz
+            sl[3, s] = py * fz - pz * fy
+            sl[4, s] = pz * fx - px * fz
+            sl[5, s] = px * fy - py * fx
+        f0 = f1 = f2 = m3 = m4 = m5 = 0.0
+        for s in range(ns):  # their sums, in strip order
+            f0 += sl[0, s]
+            f1 += sl[1, s]
+            f2 += sl[2, s]
+            m3 += sl[3, s]
+            m4 += sl[4, s]
+            m5 += sl[5, s]
         F[0] += f0
         F[1] += f1
         F[2] += f2
@@ -438,7 +451,7 @@ def _advance(j, dt, state, body, rad, strips, rotor, wave, moor, rec):  # pragma
         for d in range(6):
             fmoor6[b, d] += static[d]
     if rad.kernel.shape[1] > 0:
-        _convolve(j, v, state.history, rad, fmoor6)
+        _convolve(j, v, state.history, rad, state.convolution, fmoor6)
     if i >= 0:
         for b in range(nb):
             for d in range(6):
@@ -453,33 +466,77 @@ def _advance(j, dt, state, body, rad, strips, rotor, wave, moor, rec):  # pragma
 
 
 @numba.njit(cache=True)
-def _convolve(j, v, hist, rad, out):  # pragma: no cover - numba
+def _convolve(j, v, hist, rad, acc, out):  # pragma: no cover - numba
     """Subtract the radiation convolution ``sum_k K[k] v(t_j - k stride dt)`` from ``out (B, 6)``.
 
     ``rad.kernel (npairs, nlag)`` (``ker``) holds the kernel with the trapezoid weights and its step ``stride dt``
     folded in, oldest lag first (``ker[p, nlag - 1 - k] = w_k K_p(k stride dt)``).
-    ``hist (B, stride, 6, 2 nlag)`` is the velocity history of every step, split by the
+    ``hist (stride, 6, 2 nlag, B)`` is the velocity history of every step, split by the
     step's residue modulo ``stride`` and stored twice (slot and slot + nlag) so that the
-    ``nlag`` samples of a convolution are one contiguous window: each pair is a unit-stride
-    dot product, which the compiler vectorises. ``v`` is stored first. Pair ``p`` is the force
-    in DOF ``kpi[p]`` from the velocity in DOF ``kpj[p]``; ``stride`` is ``rad.kernel_stride``.
+    ``nlag`` samples of a convolution are one contiguous window, the cases innermost. ``v`` is
+    stored first. Pair ``p`` is the force in DOF ``kpi[p]`` from the velocity in DOF ``kpj[p]``;
+    ``stride`` is ``rad.kernel_stride``.
+
+    Every sum ``acc[p, b]`` (``acc (npairs, B)``, scratch) is the plain sum oldest lag first
+    (so the bits do not depend on the batch), but four at a time: four cases of one pair (one
+    vector of adjacent cases), or, for the cases left over, four pairs of one case. A single sum
+    waits on each addition; four independent ones do not.
     """
     ker, stride, kpi, kpj = rad.kernel, rad.kernel_stride, rad.kernel_force_dof, rad.kernel_velocity_dof
     npair, nlag = ker.shape
+    nb = v.shape[0]
     c = j % stride
     slot = (j // stride) % nlag
-    for b in range(v.shape[0]):
-        for d in range(6):
-            hist[b, c, d, slot] = v[b, d]
-            hist[b, c, d, slot + nlag] = v[b, d]
-    for p in range(npair):  # one kernel row at a time, for every case (it stays in cache)
-        k = ker[p]
-        for b in range(v.shape[0]):
-            h = hist[b, c, kpj[p]]
-            acc = 0.0
+    for d in range(6):
+        for b in range(nb):
+            hist[c, d, slot, b] = v[b, d]
+            hist[c, d, slot + nlag, b] = v[b, d]
+    s = slot + 1
+    hc = hist[c]
+    b = 0
+    while b + 4 <= nb:  # four cases at a time, one pair
+        for p in range(npair):
+            k = ker[p]
+            h = hc[kpj[p]]
+            a0 = a1 = a2 = a3 = 0.0
             for i in range(nlag):
-                acc += k[i] * h[slot + 1 + i]
-            out[b, kpi[p]] -= acc
+                a0 += k[i] * h[s + i, b]
+                a1 += k[i] * h[s + i, b + 1]
+                a2 += k[i] * h[s + i, b + 2]
+                a3 += k[i] * h[s + i, b + 3]
+            acc[p, b] = a0
+            acc[p, b + 1] = a1
+            acc[p, b + 2] = a2
+            acc[p, b + 3] = a3
+        b += 4
+    while b < nb:  # the other cases one by one, four pairs at a time
+        p = 0
+        while p + 4 <= npair:
+            k0, k1, k2, k3 = ker[p], ker[p + 1], ker[p + 2], ker[p + 3]
+            h0, h1, h2, h3 = hc[kpj[p]], hc[kpj[p + 1]], hc[kpj[p + 2]], hc[kpj[p + 3]]
+            a0 = a1 = a2 = a3 = 0.0
+            for i in range(nlag):
+                a0 += k0[i] * h0[s + i, b]
+                a1 += k1[i] * h1[s + i, b]
+                a2 += k2[i] * h2[s + i, b]
+                a3 += k3[i] * h3[s + i, b]
+            acc[p, b] = a0
+            acc[p + 1, b] = a1
+            acc[p + 2, b] = a2
+            acc[p + 3, b] = a3
+            p += 4
+        while p < npair:
+            k = ker[p]
+            h = hc[kpj[p]]
+            a0 = 0.0
+            for i in range(nlag):
+                a0 += k[i] * h[s + i, b]
+            acc[p, b] = a0
+            p += 1
+        b += 1
+    for p in range(npair):
+        for b in range(nb):
+            out[b, kpi[p]] -= acc[p, b]
 
 
 @numba.njit(cache=True)
