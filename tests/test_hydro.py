@@ -60,6 +60,44 @@ def test_symmetry_refused_for_asymmetric_hull():
         hydro.capytaine_body([_column(xy=(20.0, 0.0))], panel_size=2.0, rotational_symmetry=3, lid=False)
 
 
+def _pinwheel():
+    """Three columns at 120 deg, each joined to the next by a brace that climbs from z = -8 m to
+    -3 m: a 3-fold symmetric hull that is not mirror-symmetric (seen from above it is)."""
+    p = [20.0 * np.array([np.cos(2 * np.pi * k / 3), np.sin(2 * np.pi * k / 3), 0.0]) for k in range(3)]
+    out = [_column(d=6.0, z0=-10.0, z1=5.0, xy=tuple(q[:2])) for q in p]
+    for k in range(3):
+        u = (p[(k + 1) % 3] - p[k]) / np.linalg.norm(p[(k + 1) % 3] - p[k])
+        a, b = p[k] + 3.0 * u + [0, 0, -8.0], p[(k + 1) % 3] - 3.0 * u + [0, 0, -3.0]
+        out.append(hydro.Member(f"b{k}", "brace", a, b, 1.0, 0.6))
+    return out
+
+
+def test_mirror_symmetry_refused_for_a_chiral_hull():
+    pytest.importorskip("capytaine")
+    hydro.capytaine_body(_pinwheel(), panel_size=2.0, rotational_symmetry=3, lid=False)  # 3-fold: accepted
+    with pytest.raises(ValueError, match="not 3-fold symmetric about z and mirror-symmetric about y = 0"):
+        hydro.capytaine_body(_pinwheel(), panel_size=2.0, rotational_symmetry=3, mirror_symmetry=True, lid=False)
+    with pytest.raises(ValueError, match="not mirror-symmetric about y = 0"):
+        hydro.capytaine_body([_column(xy=(0.0, 20.0))], panel_size=2.0, mirror_symmetry=True, lid=False)
+    hydro.capytaine_body([_column(xy=(20.0, 0.0))], panel_size=2.0, mirror_symmetry=True, lid=False)  # accepted
+
+
+def test_mirror_layout_cuts_no_panel_of_the_oc4_hull(platform_cfg):
+    """With the mirror symmetry the hull is meshed along its three mirror planes: the dihedral
+    mesh (a sixth of the hull cut out, mirrored and rotated) has the panels of the whole hull,
+    no sliver, and the same hydrostatics (1.5 m panels)."""
+    pytest.importorskip("capytaine")
+    mem = hydro.members_from_config(platform_cfg)
+    _, faces = hydro.hull_panels(mem, 1.5, mirror_planes=3)
+    body = hydro.capytaine_body(mem, 1.5, rotational_symmetry=3, mirror_symmetry=True)
+    assert body.mesh.nb_faces == len(faces) == 6 * body.mesh.wedge.half.nb_faces
+    assert body.mesh.faces_areas.min() > 1e-3 * 1.5**2
+    old = hydro.capytaine_body(mem, 1.5, rotational_symmetry=3)
+    np.testing.assert_allclose(body.volume, old.volume, rtol=1e-3)
+    C, C_old = (b.compute_hydrostatic_stiffness(rho=1025.0, g=9.80665).values for b in (body, old))
+    np.testing.assert_allclose(np.diag(C)[2:5], np.diag(C_old)[2:5], rtol=2e-3)
+
+
 def _centres_and_area_vectors(v, f):
     """Panel centres ``(nf, 3)`` and area vectors ``(nf, 3)`` (area times outward normal);
     a triangle repeats its last vertex."""
