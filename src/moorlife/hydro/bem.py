@@ -291,6 +291,10 @@ def _solve_frequency(
 ) -> tuple[np.ndarray, ...]:
     """Radiation (6 dofs) and diffraction (every heading) at one frequency, single-threaded.
 
+    On a dihedral mesh (:func:`moorlife.hydro.dihedral.dihedral_order`) the influence matrix is
+    factorised by its irreducible blocks and only the headings in ``[0, pi / n]`` are solved,
+    the others following by symmetry (:mod:`moorlife.hydro.dihedral`; exact).
+
     Returns ``A (6,6)``, ``B (6,6)``, ``F (nh,6)`` (Capytaine convention), and the Kochin
     functions ``H_rad (6,nt)`` and ``H_dif (nh,nt)`` (empty when ``omega`` is infinite).
     """
@@ -299,17 +303,25 @@ def _solve_frequency(
     from capytaine.post_pro.kochin import compute_kochin
     from threadpoolctl import threadpool_limits
 
+    from moorlife.hydro import dihedral
+
     dofs = list(body.dofs)
     finite = bool(np.isfinite(omega))
+    n = dihedral.dihedral_order(body)
+    if n and (theta.size - 1) % n == 0:
+        solved, how = dihedral.heading_orbits(headings, n)
+    else:
+        solved, how = headings, []
     problems = [cpt.RadiationProblem(body=body, omega=omega, radiating_dof=d, **kw) for d in dofs]
     if finite:
-        problems += [cpt.DiffractionProblem(body=body, omega=omega, wave_direction=b, **kw) for b in headings]
+        problems += [cpt.DiffractionProblem(body=body, omega=omega, wave_direction=b, **kw) for b in solved]
     A, B = np.zeros((6, 6)), np.zeros((6, 6))
-    F = np.zeros((headings.size, 6), dtype=complex)
+    F0 = np.zeros((solved.size, 6), dtype=complex)
     H_rad = np.zeros((6, theta.size), dtype=complex)
-    H_dif = np.zeros((headings.size, theta.size), dtype=complex)
+    H0 = np.zeros((solved.size, theta.size), dtype=complex)
+    solver = cpt.BEMSolver(engine=dihedral.dihedral_engine()) if n else cpt.BEMSolver()
     with threadpool_limits(limits=1):
-        results = cpt.BEMSolver().solve_all(problems, keep_details=finite, n_jobs=1, n_threads=1, progress_bar=False)
+        results = solver.solve_all(problems, keep_details=finite, n_jobs=1, n_threads=1, progress_bar=False)
         for r in results:
             if isinstance(r.problem, cpt.RadiationProblem):
                 j = dofs.index(r.radiating_dof)
@@ -318,10 +330,14 @@ def _solve_frequency(
                 if finite:
                     H_rad[j] = compute_kochin(r, theta)
             else:
-                ih = int(np.argmin(np.abs(headings - r.problem.wave_direction)))
+                ih = int(np.argmin(np.abs(solved - r.problem.wave_direction)))
                 fk = froude_krylov_force(r.problem)
-                F[ih] = [r.forces[d] + fk[d] for d in dofs]
-                H_dif[ih] = compute_kochin(r, theta)
+                F0[ih] = [r.forces[d] + fk[d] for d in dofs]
+                H0[ih] = compute_kochin(r, theta)
+    if solved is headings:
+        return A, B, F0, H_rad, H0
+    F = np.stack([dihedral.transform_excitation(F0[i], a, s) for i, a, s in how])
+    H_dif = np.stack([dihedral.transform_kochin(H0[i], a, s) for i, a, s in how])
     return A, B, F, H_rad, H_dif
 
 
