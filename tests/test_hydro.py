@@ -615,6 +615,9 @@ def test_bem_settings_change_only_with_bem_inputs(platform_cfg, study_config):
     assert base["deep_water_kh"] == 10.0  # the schema default
     finite = {**cfg["hydro"], "deep_water_kh": None}
     assert "deep_water_kh" not in hydro.bem_settings(finite, platform_cfg)  # null: the params from before
+    assert base["mirror_symmetry"] is True  # the schema default
+    rotation_only = {**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "mirror_symmetry": False}}
+    assert "mirror_symmetry" not in hydro.bem_settings(rotation_only, platform_cfg)  # false: the params from before
     finer = {**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "around_refinement": 2.0}}
     assert hydro.bem_settings(finer, platform_cfg)["around_refinement"] == 2.0
     with pytest.raises(ValueError, match="hydro.mesh.resolution = 'medium'"):
@@ -632,6 +635,7 @@ def coarse_two_frequencies(platform_cfg, study_config_factory):
     # the fixture was made with every frequency in finite depth (before hydro.deep_water_kh);
     # the threshold moves the coarse mesh's X3 at 2.5 rad/s by 5e-4 of its peak, above atol
     s.pop("deep_water_kh")
+    s.pop("mirror_symmetry")  # and before the mirror symmetry (its mesh differs: 6 m panels cut along other planes)
     return s, hydro.bem_from_settings(s, n_jobs=1)
 
 

@@ -128,6 +128,8 @@ def bem_settings(hydro_cfg: Mapping, platform_cfg: Mapping) -> dict:
     extra = {"around_refinement": around} if around != 1.0 else {}
     # the same for the deep-water threshold at null (every frequency in finite depth, as before)
     deep = {"deep_water_kh": h.deep_water_kh} if h.deep_water_kh is not None else {}
+    # and for the mirror symmetry at false (the rotation alone and the mesh of before)
+    mirror = {"mirror_symmetry": True} if h.mirror_symmetry else {}
     return {
         "source": h.source,
         "capytaine": _capytaine_version(),
@@ -139,6 +141,7 @@ def bem_settings(hydro_cfg: Mapping, platform_cfg: Mapping) -> dict:
         "panel_size": sizes[res],
         "richardson": h.richardson,
         "rotational_symmetry": h.rotational_symmetry,
+        **mirror,
         "irregular_frequency_removal": h.irregular_frequency_removal,
         "kochin_directions": h.kochin_directions,
         **deep,
@@ -570,10 +573,12 @@ def _bem_one_mesh(settings: Mapping, panel_size: float, n_jobs: int) -> xr.Datas
     M, mtot, cg = system_mass_properties(settings["bodies"], "hydro params")
     # omitted at its schema default (bem_settings)
     around = float(settings.get("around_refinement", section_defaults("hydro.mesh")["around_refinement"]))
+    mirror = bool(settings.get("mirror_symmetry"))  # omitted at false (bem_settings)
     body = capytaine_body(
         members,
         panel_size,
         rotational_symmetry=settings.get("rotational_symmetry"),
+        mirror_symmetry=mirror,
         lid=settings["irregular_frequency_removal"],
         around=around,
     )
@@ -598,6 +603,7 @@ def _bem_one_mesh(settings: Mapping, panel_size: float, n_jobs: int) -> xr.Datas
             "panel_size": float(panel_size),
             "around_refinement": around,
             "rotational_symmetry": int(settings.get("rotational_symmetry") or 0),
+            "mirror_symmetry": int(mirror),
             "irregular_frequency_removal": int(bool(settings["irregular_frequency_removal"])),
         }
     )
