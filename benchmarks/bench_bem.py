@@ -8,10 +8,11 @@ symmetry, lid; 24 headings) unless ``--mesh coarse``:
        nice -n 5 .venv/bin/python benchmarks/bench_bem.py --omega 0.6 1.2
 
    Each variant solves one frequency's 6 radiation and 24 diffraction problems in a fresh
-   spawned process, single-threaded, as the ``hydro`` rule does (``moorlife.hydro.run_bem``),
-   and reports that process's CPU time (``RUSAGE_CHILDREN``: import, body, Green function,
-   solves, Kochin functions) and the largest change of A, B and X against the baseline,
-   normalised by the baseline's largest value of each (6 x 6 or dof) term at that frequency.
+   spawned process, single-threaded, as the ``hydro`` rule does (``moorlife.hydro.run_bem``:
+   the body is built in this process and sent), and reports that process's CPU time
+   (``RUSAGE_CHILDREN``: start, import, Green function, solves, Kochin functions) and the
+   largest change of A, B and X against the baseline, normalised by the baseline's largest
+   value of each (6 x 6 or dof) term at that frequency.
    Variants:
 
    - ``finite``: the study before issue 23, every frequency in the finite depth
@@ -24,7 +25,19 @@ symmetry, lid; 24 headings) unless ``--mesh coarse``:
      problems of this variant, which is slow; its cost for all 30 is then estimated from the
      extra factorisations it did, see ``levers``);
    - ``gmres``: finite depth, Capytaine's GMRES instead of LU (no factorisation at all);
-   - ``float32``: finite depth, the single-precision Green function and solve.
+   - ``float32``: finite depth, the single-precision Green function and solve;
+   - ``mirror``: the hydro rule since issue 23 (``hydro.mesh.mirror_symmetry``), finite
+     depth: the mesh laid out along the three mirror planes and solved with the dihedral
+     symmetry (``moorlife.hydro.bem._solve_frequency``: Green function on a sixth of the
+     panels, the influence matrix factorised by irreducible blocks, 5 of the 24 headings
+     solved and the others moved);
+   - ``mirror_infinite``: the same in infinite depth (a frequency above ``deep_water_kh``);
+   - ``mirror_rotation``: the panels of ``mirror`` solved with the rotation alone and every
+     heading (Capytaine's block-circulant solve, the path of the variants above): the
+     reference of ``mirror``'s exactness (``--variants mirror_rotation mirror``).
+
+   The variants up to ``float32`` use the mesh and the rotational symmetry of before issue 23
+   (``mirror_symmetry: false``), whatever the study config says.
 
    The machine may be loaded: compare the ratios of one run, not absolute times.
 
@@ -35,7 +48,8 @@ symmetry, lid; 24 headings) unless ``--mesh coarse``:
            --reference results/hydro/platform.nc --save /tmp/platform_deep.nc
 
    runs ``moorlife.hydro.bem_from_settings`` on the study's hydro params (with
-   ``--deep-water-kh`` to override the threshold, ``null`` for every frequency in finite depth)
+   ``--deep-water-kh`` to override the threshold, ``null`` for every frequency in finite depth,
+   and ``--no-mirror`` for ``hydro.mesh.mirror_symmetry: false``, the rule before it)
    and prints its wall and CPU time; with ``--reference`` (a platform.nc of the same mesh, e.g.
    one made before the threshold) the largest change of every coefficient, normalised by the
    reference's peak over 0.2-1.5 rad/s as validation/hydro.md does.
@@ -53,7 +67,7 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-VARIANTS = ("finite", "infinite", "no_lu_reuse", "gmres", "float32")
+VARIANTS = ("finite", "infinite", "no_lu_reuse", "gmres", "float32", "mirror", "mirror_infinite", "mirror_rotation")
 
 
 def _children_cpu() -> float:
@@ -61,7 +75,7 @@ def _children_cpu() -> float:
     return r.ru_utime + r.ru_stime
 
 
-def _settings(mesh: str, deep_water_kh: str | None = "default") -> dict:
+def _settings(mesh: str, deep_water_kh: str | None = "default", mirror: bool | None = None) -> dict:
     from moorlife import hydro
     from moorlife.io import read_study_config, read_yaml
 
@@ -69,6 +83,8 @@ def _settings(mesh: str, deep_water_kh: str | None = "default") -> dict:
     hcfg = {**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "resolution": mesh}}
     if deep_water_kh != "default":
         hcfg["deep_water_kh"] = None if deep_water_kh in (None, "null") else float(deep_water_kh)
+    if mirror is not None:
+        hcfg["mesh"]["mirror_symmetry"] = mirror
     return hydro.bem_settings(hcfg, read_yaml(ROOT / "config/platform.yaml"))
 
 
@@ -84,8 +100,24 @@ def _no_lu_reuse_engine():
     return NoLUReuse()
 
 
-def _solve_variant(settings: dict, omega: float, variant: str, n_problems: int | None):
-    """One frequency's problems in this (fresh) process; A, B (6,6), X (nh,6) and the number solved."""
+def _body(settings: dict, variant: str):
+    """The variant's Capytaine body, built in the calling process as the hydro rule does."""
+    from moorlife import hydro
+    from moorlife.hydro.dihedral import same_panels
+
+    body = hydro.capytaine_body(
+        hydro.members_from_config({"members": settings["members"]}, "bench"),
+        float(settings["panel_size"]),
+        rotational_symmetry=settings.get("rotational_symmetry"),
+        mirror_symmetry=variant.startswith("mirror"),
+        lid=settings["irregular_frequency_removal"],
+    )
+    return same_panels(body, rotation=True) if variant == "mirror_rotation" else body
+
+
+def _solve_variant(body, settings: dict, omega: float, variant: str, n_problems: int | None):
+    """One frequency's problems in this (fresh) process; A, B (6,6), X (nh,6), the number of
+    problems solved, the CPU of the solve and the number of hull panels."""
     import capytaine as cpt
     from capytaine.bem.airy_waves import froude_krylov_force
     from capytaine.bem.engines import DefaultMatrixEngine
@@ -94,18 +126,20 @@ def _solve_variant(settings: dict, omega: float, variant: str, n_problems: int |
     from threadpoolctl import threadpool_limits
 
     from moorlife import hydro
+    from moorlife.hydro.bem import _solve_frequency
+    from moorlife.hydro.dihedral import dihedral_order, heading_orbits
 
-    members = hydro.members_from_config({"members": settings["members"]}, "bench")
-    body = hydro.capytaine_body(
-        members,
-        float(settings["panel_size"]),
-        rotational_symmetry=settings.get("rotational_symmetry"),
-        lid=settings["irregular_frequency_removal"],
-    )
     env = settings["environment"]
-    depth = np.inf if variant == "infinite" else float(env["water_depth"])
+    depth = np.inf if variant.endswith("infinite") else float(env["water_depth"])
     kw = dict(water_depth=depth, rho=float(env["rho_water"]), g=float(env["gravity"]))
     headings = hydro.heading_grid(settings["heading_step"])
+    if variant.startswith("mirror"):  # the hydro rule's own frequency solve
+        theta = np.linspace(0.0, 2.0 * np.pi, int(settings["kochin_directions"]) + 1)
+        n = dihedral_order(body)
+        n_solved = 6 + (heading_orbits(headings, n)[0].size if n else headings.size)
+        t0 = time.process_time()
+        A, B, F, _, _ = _solve_frequency(body, omega, headings, theta, kw)
+        return A, B, F, n_solved, time.process_time() - t0, int(body.mesh.nb_faces)
     dofs = list(body.dofs)
     problems = [cpt.RadiationProblem(body=body, omega=omega, radiating_dof=d, **kw) for d in dofs]
     problems += [cpt.DiffractionProblem(body=body, omega=omega, wave_direction=b, **kw) for b in headings]
@@ -169,21 +203,22 @@ def levers(a) -> None:
         f"mesh {a.mesh} ({settings['panel_size']} m panels), {n_all} problems a frequency; CPU s of the solver process\n"
     )
     print(
-        "| omega (rad/s) | variant | problems | CPU (s) | solve CPU (s) | CPU for all problems (s) | vs finite | max change A | B | X |"
+        "| omega (rad/s) | variant | problems | CPU (s) | solve CPU (s) | CPU for all problems (s) | vs the first | max change A | B | X |"
     )
     print("|---|---|---|---|---|---|---|---|---|---|")
+    bodies = {v: _body(settings, v) for v in a.variants}
     for w in a.omega:
         base = None
         for v in a.variants:
             try:
                 (A, B, X, n, solve_cpu, faces), cpu, wall = _in_fresh_process(
-                    _solve_variant, settings, float(w), v, a.no_lu_reuse_problems
+                    _solve_variant, bodies[v], settings, float(w), v, a.no_lu_reuse_problems
                 )
             except RuntimeError as exc:
                 print(f"| {w:g} | {v} | {str(exc).splitlines()[0]} | | | | | | | |", flush=True)
                 continue
             scaled = cpu  # the variant on every problem
-            if base is not None and n < n_all:
+            if base is not None and v == "no_lu_reuse" and n < n_all:
                 # no LU reuse on n of the problems: its extra cost over the baseline (which
                 # solves all of them with one factorisation) is n - 1 factorisations, and each
                 # further problem adds one more (the baseline's per-problem cost, a triangular
@@ -209,7 +244,7 @@ def full(a) -> None:
     from moorlife import hydro
     from moorlife.io.platform import open_platform_nc, write_platform_nc
 
-    settings = _settings(a.mesh, a.deep_water_kh)
+    settings = _settings(a.mesh, a.deep_water_kh, False if a.no_mirror else None)
     if a.grid:  # a check of the script on a few frequencies
         lo, hi, n = a.grid.split(":")
         settings["omega"] = {"min": float(lo), "max": float(hi), "n": int(n)}
@@ -218,7 +253,8 @@ def full(a) -> None:
     wall, cpu = time.perf_counter() - t0, _children_cpu() - c0
     print(
         f"hydro BEM, mesh {a.mesh} ({ds.attrs['panels']} panels), {ds.sizes['omega']} frequencies x "
-        f"{ds.sizes['heading']} headings, deep_water_kh {settings.get('deep_water_kh')} "
+        f"{ds.sizes['heading']} headings, deep_water_kh {settings.get('deep_water_kh')}, "
+        f"mirror_symmetry {bool(settings.get('mirror_symmetry'))} "
         f"({ds.attrs.get('infinite_depth_frequencies', 0)} frequencies in infinite depth), {a.jobs} jobs: "
         f"wall {wall / 60:.1f} min, solver CPU {cpu / 60:.1f} min (target 1: <= 8 min wall on 2 cores)"
     )
@@ -259,6 +295,7 @@ def main() -> None:
     ap.add_argument("--full", action="store_true", help="the whole BEM of the hydro rule")
     ap.add_argument("--jobs", type=int, default=2, help="--full: BEM worker processes")
     ap.add_argument("--deep-water-kh", default="default", help="--full: override hydro.deep_water_kh (or null)")
+    ap.add_argument("--no-mirror", action="store_true", help="--full: hydro.mesh.mirror_symmetry false (before)")
     ap.add_argument("--reference", default=None, help="--full: a platform.nc to compare with")
     ap.add_argument("--save", default=None, help="--full: write the result here")
     ap.add_argument("--grid", default=None, help="--full: MIN:MAX:N instead of the study's hydro.omega")

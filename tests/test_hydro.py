@@ -60,6 +60,107 @@ def test_symmetry_refused_for_asymmetric_hull():
         hydro.capytaine_body([_column(xy=(20.0, 0.0))], panel_size=2.0, rotational_symmetry=3, lid=False)
 
 
+def _pinwheel():
+    """Three columns at 120 deg, each joined to the next by a brace that climbs from z = -8 m to
+    -3 m: a 3-fold symmetric hull that is not mirror-symmetric (seen from above it is)."""
+    p = [20.0 * np.array([np.cos(2 * np.pi * k / 3), np.sin(2 * np.pi * k / 3), 0.0]) for k in range(3)]
+    out = [_column(d=6.0, z0=-10.0, z1=5.0, xy=tuple(q[:2])) for q in p]
+    for k in range(3):
+        u = (p[(k + 1) % 3] - p[k]) / np.linalg.norm(p[(k + 1) % 3] - p[k])
+        a, b = p[k] + 3.0 * u + [0, 0, -8.0], p[(k + 1) % 3] - 3.0 * u + [0, 0, -3.0]
+        out.append(hydro.Member(f"b{k}", "brace", a, b, 1.0, 0.6))
+    return out
+
+
+def test_mirror_symmetry_refused_for_a_chiral_hull():
+    pytest.importorskip("capytaine")
+    hydro.capytaine_body(_pinwheel(), panel_size=2.0, rotational_symmetry=3, lid=False)  # 3-fold: accepted
+    with pytest.raises(ValueError, match="not 3-fold symmetric about z and mirror-symmetric about y = 0"):
+        hydro.capytaine_body(_pinwheel(), panel_size=2.0, rotational_symmetry=3, mirror_symmetry=True, lid=False)
+    with pytest.raises(ValueError, match="not mirror-symmetric about y = 0"):
+        hydro.capytaine_body([_column(xy=(0.0, 20.0))], panel_size=2.0, mirror_symmetry=True, lid=False)
+    hydro.capytaine_body([_column(xy=(20.0, 0.0))], panel_size=2.0, mirror_symmetry=True, lid=False)  # accepted
+
+
+def test_mirror_layout_cuts_no_panel_of_the_oc4_hull(platform_cfg):
+    """With the mirror symmetry the hull is meshed along its three mirror planes: the dihedral
+    mesh (a sixth of the hull cut out, mirrored and rotated) has the panels of the whole hull,
+    no sliver, and the same hydrostatics (1.5 m panels)."""
+    pytest.importorskip("capytaine")
+    mem = hydro.members_from_config(platform_cfg)
+    _, faces = hydro.hull_panels(mem, 1.5, mirror_planes=3)
+    body = hydro.capytaine_body(mem, 1.5, rotational_symmetry=3, mirror_symmetry=True)
+    assert body.mesh.nb_faces == len(faces) == 6 * body.mesh.wedge.half.nb_faces
+    assert body.mesh.faces_areas.min() > 1e-3 * 1.5**2
+    old = hydro.capytaine_body(mem, 1.5, rotational_symmetry=3)
+    np.testing.assert_allclose(body.volume, old.volume, rtol=1e-3)
+    C, C_old = (b.compute_hydrostatic_stiffness(rho=1025.0, g=9.80665).values for b in (body, old))
+    np.testing.assert_allclose(np.diag(C)[2:5], np.diag(C_old)[2:5], rtol=2e-3)
+
+
+def test_dihedral_lu_solves_capytaine_dihedral_matrices():
+    """The factorisation by irreducible blocks solves Capytaine's nested block-circulant matrix
+    (its own dense form) for 2 to 4 rotations."""
+    bcm = pytest.importorskip("capytaine.tools.block_circulant_matrices")
+    from moorlife.hydro.dihedral import DihedralLU
+
+    rng = np.random.default_rng(3)
+    for n in (2, 3, 4):
+        blocks = rng.normal(size=(2 * n, 5, 5)) + 1j * rng.normal(size=(2 * n, 5, 5))
+        blocks[0] += 10 * np.eye(5)
+        A = bcm.NestedBlockCirculantMatrix(blocks)
+        b = rng.normal(size=10 * n) + 1j * rng.normal(size=10 * n)
+        np.testing.assert_allclose(DihedralLU(A).solve(b), np.linalg.solve(np.asarray(A), b), rtol=1e-10, atol=1e-12)
+
+
+def test_heading_orbits_and_the_symmetry_of_forces():
+    from moorlife.hydro import dihedral
+
+    solved, how = dihedral.heading_orbits(hydro.heading_grid(15.0), 3)
+    np.testing.assert_allclose(np.rad2deg(solved), [0.0, 15.0, 30.0, 45.0, 60.0], atol=1e-9)
+    for beta, (i, alpha, s) in zip(hydro.heading_grid(15.0), how):
+        assert np.isclose(np.cos(alpha + s * solved[i] - beta), 1.0)
+    # a point force f at p, as (force, moment about the origin), moved by the group element
+    rng = np.random.default_rng(1)
+    p, f = rng.normal(size=3), rng.normal(size=3)
+    for alpha, s in ((2 * np.pi / 3, 1), (0.0, -1), (4 * np.pi / 3, -1)):
+        mirror = np.diag([1.0, s, 1.0])
+        c, sn = np.cos(alpha), np.sin(alpha)
+        rot = np.array([[c, -sn, 0.0], [sn, c, 0.0], [0.0, 0.0, 1.0]]) @ mirror
+        moved = np.r_[rot @ f, np.cross(rot @ p, rot @ f)]
+        np.testing.assert_allclose(dihedral.transform_excitation(np.r_[f, np.cross(p, f)], alpha, s), moved, atol=1e-12)
+    # a Kochin function peaked at theta0 moves to alpha + s theta0
+    theta = np.linspace(0.0, 2 * np.pi, 73)
+    H = np.exp(np.cos(theta - 0.5)) + 0j
+    out = dihedral.transform_kochin(H, 2 * np.pi / 3, -1)
+    np.testing.assert_allclose(out, np.exp(np.cos(theta - (2 * np.pi / 3 - 0.5))), atol=1e-12)
+
+
+@pytest.mark.slow
+def test_mirror_symmetry_equals_the_unsymmetrised_solve(platform_cfg):
+    """The dihedral solve (Capytaine's dihedral mesh, the irreducible-block LU, 3 of 12
+    headings solved and the others moved) equals the solve of the same panels without any
+    symmetry, and with the rotation alone (the path of ``mirror_symmetry: false``), finite and
+    infinite depth, coarse OC4 mesh: to 1e-6 of each array's peak (the finite-depth Green
+    function's own noise is 1e-7); a wrong symmetry is an O(1) error."""
+    pytest.importorskip("capytaine")
+    from moorlife.hydro.bem import _solve_frequency
+    from moorlife.hydro.dihedral import same_panels
+
+    body = hydro.capytaine_body(
+        hydro.members_from_config(platform_cfg), 6.0, rotational_symmetry=3, mirror_symmetry=True
+    )
+    refs = [same_panels(body, rotation=False), same_panels(body, rotation=True)]
+    headings, theta = hydro.heading_grid(30.0), np.linspace(0.0, 2 * np.pi, 73)
+    for omega, depth in ((0.6, 200.0), (1.2, np.inf)):
+        kw = {"water_depth": depth, "rho": 1025.0, "g": 9.80665}
+        got = _solve_frequency(body, omega, headings, theta, kw)
+        for ref in (_solve_frequency(b, omega, headings, theta, kw) for b in refs):
+            for name, x, y in zip(("A", "B", "X", "H_rad", "H_dif"), got, ref):
+                np.testing.assert_allclose(x, y, rtol=0, atol=1e-6 * np.max(np.abs(y)), err_msg=f"{name} at {omega}")
+        assert np.max(np.abs(got[2][:, [1, 3, 5]][0])) < 1e-9 * np.max(np.abs(got[2]))  # heading 0: no sway, roll, yaw
+
+
 def _centres_and_area_vectors(v, f):
     """Panel centres ``(nf, 3)`` and area vectors ``(nf, 3)`` (area times outward normal);
     a triangle repeats its last vertex."""
@@ -514,6 +615,9 @@ def test_bem_settings_change_only_with_bem_inputs(platform_cfg, study_config):
     assert base["deep_water_kh"] == 10.0  # the schema default
     finite = {**cfg["hydro"], "deep_water_kh": None}
     assert "deep_water_kh" not in hydro.bem_settings(finite, platform_cfg)  # null: the params from before
+    assert base["mirror_symmetry"] is True  # the schema default
+    rotation_only = {**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "mirror_symmetry": False}}
+    assert "mirror_symmetry" not in hydro.bem_settings(rotation_only, platform_cfg)  # false: the params from before
     finer = {**cfg["hydro"], "mesh": {**cfg["hydro"]["mesh"], "around_refinement": 2.0}}
     assert hydro.bem_settings(finer, platform_cfg)["around_refinement"] == 2.0
     with pytest.raises(ValueError, match="hydro.mesh.resolution = 'medium'"):
@@ -531,6 +635,7 @@ def coarse_two_frequencies(platform_cfg, study_config_factory):
     # the fixture was made with every frequency in finite depth (before hydro.deep_water_kh);
     # the threshold moves the coarse mesh's X3 at 2.5 rad/s by 5e-4 of its peak, above atol
     s.pop("deep_water_kh")
+    s.pop("mirror_symmetry")  # and before the mirror symmetry (its mesh differs: 6 m panels cut along other planes)
     return s, hydro.bem_from_settings(s, n_jobs=1)
 
 

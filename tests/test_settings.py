@@ -47,6 +47,7 @@ RENAMED = {
         "around_refinement": "mesh.around_refinement",
         "richardson": "mesh.richardson",
         "rotational_symmetry": "mesh.rotational_symmetry",
+        "mirror_symmetry": "mesh.mirror_symmetry",
     },
     "FatigueSettings": {
         "corrosion_rate": "corrosion.rate",

@@ -238,6 +238,7 @@ class HydroSettings:
     panel_size: Mapping[str, float]
     around_refinement: float
     rotational_symmetry: int | None
+    mirror_symmetry: bool
     richardson: bool
     irregular_frequency_removal: bool
     kochin_directions: int
@@ -263,6 +264,7 @@ class HydroSettings:
             panel_size={str(k): float(v) for k, v in mesh["panel_size"].items()},
             around_refinement=float(mesh["around_refinement"]),
             rotational_symmetry=None if sym is None else int(sym),
+            mirror_symmetry=bool(mesh["mirror_symmetry"]),
             richardson=bool(mesh["richardson"]),
             irregular_frequency_removal=bool(s["irregular_frequency_removal"]),
             kochin_directions=int(s["kochin_directions"]),

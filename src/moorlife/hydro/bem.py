@@ -128,6 +128,8 @@ def bem_settings(hydro_cfg: Mapping, platform_cfg: Mapping) -> dict:
     extra = {"around_refinement": around} if around != 1.0 else {}
     # the same for the deep-water threshold at null (every frequency in finite depth, as before)
     deep = {"deep_water_kh": h.deep_water_kh} if h.deep_water_kh is not None else {}
+    # and for the mirror symmetry at false (the rotation alone and the mesh of before)
+    mirror = {"mirror_symmetry": True} if h.mirror_symmetry else {}
     return {
         "source": h.source,
         "capytaine": _capytaine_version(),
@@ -139,6 +141,7 @@ def bem_settings(hydro_cfg: Mapping, platform_cfg: Mapping) -> dict:
         "panel_size": sizes[res],
         "richardson": h.richardson,
         "rotational_symmetry": h.rotational_symmetry,
+        **mirror,
         "irregular_frequency_removal": h.irregular_frequency_removal,
         "kochin_directions": h.kochin_directions,
         **deep,
@@ -291,6 +294,10 @@ def _solve_frequency(
 ) -> tuple[np.ndarray, ...]:
     """Radiation (6 dofs) and diffraction (every heading) at one frequency, single-threaded.
 
+    On a dihedral mesh (:func:`moorlife.hydro.dihedral.dihedral_order`) the influence matrix is
+    factorised by its irreducible blocks and only the headings in ``[0, pi / n]`` are solved,
+    the others following by symmetry (:mod:`moorlife.hydro.dihedral`; exact).
+
     Returns ``A (6,6)``, ``B (6,6)``, ``F (nh,6)`` (Capytaine convention), and the Kochin
     functions ``H_rad (6,nt)`` and ``H_dif (nh,nt)`` (empty when ``omega`` is infinite).
     """
@@ -299,17 +306,25 @@ def _solve_frequency(
     from capytaine.post_pro.kochin import compute_kochin
     from threadpoolctl import threadpool_limits
 
+    from moorlife.hydro import dihedral
+
     dofs = list(body.dofs)
     finite = bool(np.isfinite(omega))
+    n = dihedral.dihedral_order(body)
+    if n and (theta.size - 1) % n == 0:
+        solved, how = dihedral.heading_orbits(headings, n)
+    else:
+        solved, how = headings, []
     problems = [cpt.RadiationProblem(body=body, omega=omega, radiating_dof=d, **kw) for d in dofs]
     if finite:
-        problems += [cpt.DiffractionProblem(body=body, omega=omega, wave_direction=b, **kw) for b in headings]
+        problems += [cpt.DiffractionProblem(body=body, omega=omega, wave_direction=b, **kw) for b in solved]
     A, B = np.zeros((6, 6)), np.zeros((6, 6))
-    F = np.zeros((headings.size, 6), dtype=complex)
+    F0 = np.zeros((solved.size, 6), dtype=complex)
     H_rad = np.zeros((6, theta.size), dtype=complex)
-    H_dif = np.zeros((headings.size, theta.size), dtype=complex)
+    H0 = np.zeros((solved.size, theta.size), dtype=complex)
+    solver = cpt.BEMSolver(engine=dihedral.dihedral_engine()) if n else cpt.BEMSolver()
     with threadpool_limits(limits=1):
-        results = cpt.BEMSolver().solve_all(problems, keep_details=finite, n_jobs=1, n_threads=1, progress_bar=False)
+        results = solver.solve_all(problems, keep_details=finite, n_jobs=1, n_threads=1, progress_bar=False)
         for r in results:
             if isinstance(r.problem, cpt.RadiationProblem):
                 j = dofs.index(r.radiating_dof)
@@ -318,10 +333,14 @@ def _solve_frequency(
                 if finite:
                     H_rad[j] = compute_kochin(r, theta)
             else:
-                ih = int(np.argmin(np.abs(headings - r.problem.wave_direction)))
+                ih = int(np.argmin(np.abs(solved - r.problem.wave_direction)))
                 fk = froude_krylov_force(r.problem)
-                F[ih] = [r.forces[d] + fk[d] for d in dofs]
-                H_dif[ih] = compute_kochin(r, theta)
+                F0[ih] = [r.forces[d] + fk[d] for d in dofs]
+                H0[ih] = compute_kochin(r, theta)
+    if solved is headings:
+        return A, B, F0, H_rad, H0
+    F = np.stack([dihedral.transform_excitation(F0[i], a, s) for i, a, s in how])
+    H_dif = np.stack([dihedral.transform_kochin(H0[i], a, s) for i, a, s in how])
     return A, B, F, H_rad, H_dif
 
 
@@ -554,10 +573,12 @@ def _bem_one_mesh(settings: Mapping, panel_size: float, n_jobs: int) -> xr.Datas
     M, mtot, cg = system_mass_properties(settings["bodies"], "hydro params")
     # omitted at its schema default (bem_settings)
     around = float(settings.get("around_refinement", section_defaults("hydro.mesh")["around_refinement"]))
+    mirror = bool(settings.get("mirror_symmetry"))  # omitted at false (bem_settings)
     body = capytaine_body(
         members,
         panel_size,
         rotational_symmetry=settings.get("rotational_symmetry"),
+        mirror_symmetry=mirror,
         lid=settings["irregular_frequency_removal"],
         around=around,
     )
@@ -582,6 +603,7 @@ def _bem_one_mesh(settings: Mapping, panel_size: float, n_jobs: int) -> xr.Datas
             "panel_size": float(panel_size),
             "around_refinement": around,
             "rotational_symmetry": int(settings.get("rotational_symmetry") or 0),
+            "mirror_symmetry": int(mirror),
             "irregular_frequency_removal": int(bool(settings["irregular_frequency_removal"])),
         }
     )

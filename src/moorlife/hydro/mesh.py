@@ -3,6 +3,7 @@ interior lid as panels, and the Capytaine body (see :mod:`moorlife.hydro` for th
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -112,8 +113,25 @@ def _basis(e: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return u, v
 
 
-def wall_panels(a: np.ndarray, b: np.ndarray, radius: float, panel_size: float, n_theta: int | None = None):
+def _start_basis(e: np.ndarray, start: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(u, v)`` with ``u`` along ``start`` made normal to ``e`` and ``v = e x u``."""
+    u = start - (start @ e) * e
+    u /= np.linalg.norm(u)
+    return u, np.cross(e, u)
+
+
+def wall_panels(
+    a: np.ndarray,
+    b: np.ndarray,
+    radius: float,
+    panel_size: float,
+    n_theta: int | None = None,
+    start: np.ndarray | None = None,
+):
     """Quadrilateral panels of a cylinder wall from ``a`` to ``b`` (outward normals).
+
+    ``start``: the direction of the first corner of every ring (made normal to the axis);
+    None: ``+x`` for a vertical member, ``e x x`` or ``e x y`` otherwise.
 
     Returns
     -------
@@ -129,7 +147,7 @@ def wall_panels(a: np.ndarray, b: np.ndarray, radius: float, panel_size: float, 
     nt = n_theta or n_around(radius, panel_size)
     nz = max(1, int(np.ceil(length / panel_size)))
     rho = _equal_area_radius(radius, nt)
-    u, v = _basis(e)
+    u, v = _basis(e) if start is None else _start_basis(e, np.asarray(start, dtype=float))
     th = np.linspace(0.0, 2.0 * np.pi, nt + 1)[:-1]
     s = np.linspace(0.0, length, nz + 1)
     ring = rho * (np.cos(th)[:, None] * u + np.sin(th)[:, None] * v)
@@ -143,12 +161,19 @@ def wall_panels(a: np.ndarray, b: np.ndarray, radius: float, panel_size: float, 
 
 
 def annulus_panels(
-    centre, r_inner: float, r_outer: float, panel_size: float, normal_up: bool, n_theta: int | None = None
+    centre,
+    r_inner: float,
+    r_outer: float,
+    panel_size: float,
+    normal_up: bool,
+    n_theta: int | None = None,
+    start_angle: float = 0.0,
 ):
     """Panels of a horizontal disk (``r_inner = 0``) or annulus at ``centre``.
 
     Returns ``(vertices (nv, 3), faces (nf, 4))``; triangles repeat their last vertex.
-    The normal is ``+z`` if ``normal_up`` else ``-z``.
+    The normal is ``+z`` if ``normal_up`` else ``-z``; the first corner of every ring is at
+    ``start_angle`` (rad, from ``+x``).
     """
     c = np.asarray(centre, dtype=float)
     nt = n_theta or n_around(r_outer, panel_size)
@@ -159,7 +184,7 @@ def annulus_panels(
     r_in = _equal_area_radius(r_inner, nt) if r_inner > 0 else 0.0
     nr = max(1, int(np.ceil((r_out - r_in) / panel_size)))
     radii = np.linspace(r_in, r_out, nr + 1)
-    th = np.linspace(0.0, 2.0 * np.pi, nt + 1)[:-1]
+    th = start_angle + np.linspace(0.0, 2.0 * np.pi, nt + 1)[:-1]
     if r_in == 0.0:
         radii = radii[1:]
     ring = np.stack([np.cos(th), np.sin(th), np.zeros_like(th)], axis=1)
@@ -313,7 +338,46 @@ def _disk_panels(centre: np.ndarray, normal: np.ndarray, radius: float, panel_si
     return centre + verts @ basis, faces
 
 
-def hull_panels(members: Sequence[Member], panel_size: float, around: float = 1.0):
+def _column_ring(m: Member, panel_size: float, around: float, mirror_planes: int) -> tuple[int, float]:
+    """Panels around a column and the angle of its first corner (rad).
+
+    With ``mirror_planes`` the layout follows the hull's mirror planes (:func:`hull_panels`):
+    a column off the z axis starts on its radial line (a corner on each plane through its
+    axis and the z axis), a column on the z axis gets a multiple of ``2 mirror_planes`` panels
+    around (a corner on every plane)."""
+    nt = n_around(m.radius, panel_size / around)
+    if not mirror_planes:
+        return nt, 0.0
+    if np.hypot(m.a[0], m.a[1]) > 1e-9:
+        return nt, float(np.arctan2(m.a[1], m.a[0]))
+    k = 2 * int(mirror_planes)
+    return -(-nt // k) * k, 0.0
+
+
+def _onto_mirror_planes(members: Sequence[Member], mirror_planes: int, tol: float) -> list[Member]:
+    """``members`` with every end point within ``tol`` of one of the ``mirror_planes`` vertical
+    planes through the z axis (at ``k pi / mirror_planes``) moved onto it. The platform's
+    coordinates are rounded (OC4: up to 2e-4 m off its planes); a member that far off a plane
+    would leave sliver panels where the mesh is cut along the plane."""
+    normals = [
+        np.array([-np.sin(np.pi * k / mirror_planes), np.cos(np.pi * k / mirror_planes), 0.0])
+        for k in range(mirror_planes)
+    ]
+
+    def onto(p: np.ndarray) -> np.ndarray:
+        p = p.copy()
+        for n in normals:
+            d = float(p @ n)
+            if abs(d) < tol:
+                p -= d * n
+        if np.hypot(p[0], p[1]) < tol:  # on two planes: on the axis
+            p[:2] = 0.0
+        return p
+
+    return [dataclasses.replace(m, a=onto(m.a), b=onto(m.b)) for m in members]
+
+
+def hull_panels(members: Sequence[Member], panel_size: float, around: float = 1.0, mirror_planes: int = 0):
     """Panels of the wetted hull (below z = 0) of a platform.
 
     Columns are closed by their end caps (an annulus where a narrower coaxial column
@@ -332,6 +396,14 @@ def hull_panels(members: Sequence[Member], panel_size: float, around: float = 1.
         as ``panel_size`` gives (panels ``panel_size / around`` wide, ``panel_size`` long).
         The surge added mass converges with the number of panels around, not along
         (``validation/hydro.md``, section 0b).
+    mirror_planes : int
+        0: the layout of before (every ring starts on ``+x`` or a fixed axis). ``n > 0``: a
+        layout that follows a hull with ``n`` vertical mirror planes through the z axis (at
+        ``k pi / n``; OC4: 3), so that cutting the mesh along them cuts few panels and leaves
+        no slivers (:func:`capytaine_body` with ``mirror_symmetry``): member end points within
+        ``1e-3 panel_size`` of a plane are moved onto it, columns start on their radial line
+        (:func:`_column_ring`), braces on the horizontal normal to their axis (a rule that
+        commutes with rotations and with mirrors about vertical planes).
 
     Returns
     -------
@@ -341,6 +413,8 @@ def hull_panels(members: Sequence[Member], panel_size: float, around: float = 1.
         raise ValueError(f"panel_size must be > 0, got {panel_size!r}")
     if not around > 0:
         raise ValueError(f"around must be > 0, got {around!r}")
+    if mirror_planes:
+        members = _onto_mirror_planes(members, int(mirror_planes), 1e-3 * panel_size)
     cols = [m for m in members if m.kind == "column"]
     braces = [(m, *brace_extent(m, cols)) for m in members if m.kind == "brace" and min(m.a[2], m.b[2]) < 0.0]
     parts = []
@@ -349,8 +423,9 @@ def hull_panels(members: Sequence[Member], panel_size: float, around: float = 1.
         if m.a[2] >= 0.0:
             continue
         top = min(m.b[2], 0.0)
-        nt = n_around(m.radius, panel_size / around)
-        col_parts = [wall_panels(m.a, np.array([m.a[0], m.a[1], top]), m.radius, panel_size, nt)]
+        nt, th0 = _column_ring(m, panel_size, around, mirror_planes)
+        start = np.array([np.cos(th0), np.sin(th0), 0.0]) if mirror_planes else None
+        col_parts = [wall_panels(m.a, np.array([m.a[0], m.a[1], top]), m.radius, panel_size, nt, start)]
         for end, up in ((m.a, False), (m.b, True)):
             if end[2] >= 0.0:
                 continue
@@ -363,7 +438,7 @@ def hull_panels(members: Sequence[Member], panel_size: float, around: float = 1.
             r_cover = max((o.radius for o in others), default=0.0)
             if r_cover >= m.radius:
                 continue
-            col_parts.append(annulus_panels(end, r_cover, m.radius, panel_size, up, nt))
+            col_parts.append(annulus_panels(end, r_cover, m.radius, panel_size, up, nt, th0))
         parts += [(v, _drop_covered(v, f, brace_solids)) for v, f in col_parts]
     for m, a, b, closed_a, closed_b in braces:
         nt = n_around(m.radius, panel_size / around, minimum=BRACE_PANELS_AROUND)
@@ -373,25 +448,38 @@ def hull_panels(members: Sequence[Member], panel_size: float, around: float = 1.
             if not closed and p[2] < 0.0
         ]
         column_solids = [(col.a, col.b, col.radius, m.radius) for col in cols]
+        start = None
+        if mirror_planes:  # horizontal, normal to the axis; radial for a vertical brace
+            h = np.cross(m.axis, [0.0, 0.0, 1.0])
+            start = (
+                h if np.linalg.norm(h) > 1e-6 else np.array([*(a[:2] if np.hypot(*a[:2]) > 1e-9 else [1.0, 0.0]), 0.0])
+            )
         parts += [
             _clip_below(v, _drop_covered(v, f, column_solids))
-            for v, f in [wall_panels(a, b, m.radius, panel_size, nt), *caps]
+            for v, f in [wall_panels(a, b, m.radius, panel_size, nt, start), *caps]
         ]
     if not parts:
         raise ValueError("no member is below the still-water line: nothing to mesh")
     return _concat(parts)
 
 
-def lid_panels(members: Sequence[Member], panel_size: float, z: float = 0.0, around: float = 1.0):
+def lid_panels(
+    members: Sequence[Member], panel_size: float, z: float = 0.0, around: float = 1.0, mirror_planes: int = 0
+):
     """Panels of the interior free surface (lid) of every column crossing the water line.
 
-    ``around`` as in :func:`hull_panels`, so that the lid rim matches the column polygon.
+    ``around`` and ``mirror_planes`` as in :func:`hull_panels`, so that the lid rim matches
+    the column polygon.
 
     Used for irregular-frequency removal. Braces are not lidded (their waterplane is < 2 %).
     Returns ``(vertices (nv, 3), faces (nf, 4))`` with normals pointing down (into the body).
     """
+    if mirror_planes:
+        members = _onto_mirror_planes(members, int(mirror_planes), 1e-3 * panel_size)
     parts = [
-        annulus_panels([m.a[0], m.a[1], z], 0.0, m.radius, panel_size, False, n_around(m.radius, panel_size / around))
+        annulus_panels(
+            [m.a[0], m.a[1], z], 0.0, m.radius, panel_size, False, *_column_ring(m, panel_size, around, mirror_planes)
+        )
         for m in members
         if m.kind == "column" and m.a[2] < z < m.b[2]
     ]
@@ -412,6 +500,7 @@ def capytaine_body(
     panel_size: float,
     *,
     rotational_symmetry: int | None = None,
+    mirror_symmetry: bool = False,
     lid: bool = True,
     around: float = 1.0,
 ):
@@ -426,6 +515,14 @@ def capytaine_body(
         ``n`` to solve with an n-fold symmetry about the z axis (3 for OC4: about 3x faster).
         The hull is meshed whole, one wedge is cut out and rotated; a hull that is not
         n-fold symmetric is refused.
+    mirror_symmetry : bool
+        Also use the mirror symmetry about the plane y = 0 (xOz). With ``rotational_symmetry``
+        ``n`` the hull has the dihedral symmetry of order ``2 n`` (OC4: the three vertical planes
+        through its columns): the sector ``0 <= theta <= 180 / n`` deg is cut out, mirrored into
+        the wedge and the wedge rotated, and Capytaine evaluates the Green function on a
+        ``2 n``-th of the panels (a third fewer evaluations than rotation alone, half for
+        OC4). Without it, the half ``y >= 0`` is mirrored. A hull without the symmetry is
+        refused.
     lid : bool
         Add an interior free-surface lid (irregular-frequency removal).
     around : float
@@ -438,22 +535,34 @@ def capytaine_body(
     """
     import capytaine as cpt
 
-    hull = _to_mesh(*hull_panels(members, panel_size, around), name="hull")
-    lid_mesh = _to_mesh(*lid_panels(members, panel_size, around=around), name="lid") if lid else None
-    if rotational_symmetry:
-        n = int(rotational_symmetry)
-        sym = cpt.RotationSymmetricMesh(hull.extract_wedge(n), n=n, name="hull")
-        ref = _mesh_moments(hull)
-        got = _mesh_moments(sym)
-        if not np.allclose(got, ref, rtol=0.0, atol=0.01 * abs(ref[0])):
+    n = int(rotational_symmetry) if rotational_symmetry else None
+    planes = (n or 1) if mirror_symmetry else 0  # vertical mirror planes of the hull: D_n has n
+    hull = _to_mesh(*hull_panels(members, panel_size, around, planes), name="hull")
+    lid_mesh = (
+        _to_mesh(*lid_panels(members, panel_size, around=around, mirror_planes=planes), name="lid") if lid else None
+    )
+    if n or mirror_symmetry:
+        sym = _symmetric(hull, n, mirror_symmetry, "hull")
+        ref, got = _mesh_moments(hull), _mesh_moments(sym)
+        # the panels of the whole hull and of the one rebuilt from its symmetric part: a mirror
+        # image in x, y alone is not told apart by the moments (a brace climbing one way)
+        gap = _largest_gap(hull, sym) if mirror_symmetry else 0.0
+        if not np.allclose(got, ref, rtol=0.0, atol=0.01 * abs(ref[0])) or gap > panel_size:
+            what = " and ".join(
+                ([f"{n}-fold symmetric about z"] if n else [])
+                + (["mirror-symmetric about y = 0"] if mirror_symmetry else [])
+            )
             raise ValueError(
-                f"hydro.mesh.rotational_symmetry = {n}: the hull is not {n}-fold symmetric about z "
-                f"(volume/first moments {ref.round(1).tolist()} whole vs {got.round(1).tolist()} "
-                "rebuilt from one wedge); set it to null"
+                f"hydro.mesh.rotational_symmetry = {rotational_symmetry}, mirror_symmetry = {mirror_symmetry}: "
+                f"the hull is not {what} (volume/first moments {ref.round(1).tolist()} whole vs "
+                f"{got.round(1).tolist()} rebuilt from the symmetric part"
+                + (f"; a panel {gap:.2g} m from any of the other" if mirror_symmetry else "")
+                + "); set "
+                + ("mirror_symmetry to false" if mirror_symmetry else "it to null")
             )
         hull = sym
         if lid_mesh is not None:
-            lid_mesh = cpt.RotationSymmetricMesh(lid_mesh.extract_wedge(n), n=n, name="lid")
+            lid_mesh = _symmetric(lid_mesh, n, mirror_symmetry, "lid")
     return cpt.FloatingBody(
         mesh=hull,
         lid_mesh=lid_mesh,
@@ -463,7 +572,30 @@ def capytaine_body(
     )
 
 
+def _symmetric(mesh, n: int | None, mirror: bool, name: str):
+    """``mesh`` as Capytaine's symmetric mesh: rotation (``n``), mirror about y = 0, or both."""
+    import capytaine as cpt
+
+    if n and mirror:  # dihedral: the sector 0 <= theta <= 180 / n deg, mirrored, rotated
+        return cpt.RotationSymmetricMesh(
+            cpt.ReflectionSymmetricMesh(mesh.extract_wedge(2 * n), plane="xOz"), n=n, name=name
+        )
+    if n:
+        return cpt.RotationSymmetricMesh(mesh.extract_wedge(n), n=n, name=name)
+    return cpt.ReflectionSymmetricMesh(
+        mesh.clipped(origin=(0.0, 0.0, 0.0), normal=(0.0, -1.0, 0.0)), plane="xOz", name=name
+    )
+
+
 def _mesh_moments(mesh) -> np.ndarray:
     # volume (from x n_x) and the first moments of area of the panels: a symmetry fingerprint
     n, c, a = mesh.faces_normals, mesh.faces_centers, mesh.faces_areas
     return np.array([np.sum(c[:, 0] * n[:, 0] * a), np.sum(c[:, 0] * a), np.sum(c[:, 1] * a), np.sum(a)])
+
+
+def _largest_gap(mesh, other) -> float:
+    """The largest distance (m) from a panel centre of either mesh to the nearest of the other."""
+    from scipy.spatial import cKDTree
+
+    a, b = mesh.faces_centers, other.faces_centers
+    return float(max(cKDTree(b).query(a)[0].max(), cKDTree(a).query(b)[0].max()))
