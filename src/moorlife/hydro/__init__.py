@@ -28,6 +28,9 @@ The package holds one concept per module; everything is re-exported here, so tha
 * :mod:`moorlife.hydro.bem`: the Capytaine BEM (:func:`run_bem`), the far-field drift, the
   ``platform.nc`` dataset, and the ``hydro`` rule's driver (:func:`bem_from_settings`,
   :func:`richardson`);
+* :mod:`moorlife.hydro.dihedral`: the exact shortcuts of the BEM of a hull with dihedral
+  symmetry (``hydro.mesh.mirror_symmetry``): the influence matrix factorised by irreducible
+  blocks, the headings solved in one sector only;
 * :mod:`moorlife.hydro.body`: rigid-body mass, gravity stiffness, RAOs, natural periods;
 * :mod:`moorlife.hydro.radiation`: the retardation kernel, Ogilvie's infinite-frequency added
   mass, the state-space fit;
