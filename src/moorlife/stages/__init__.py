@@ -104,9 +104,17 @@ def result_settings(config: Mapping[str, Any], section: str) -> dict[str, Any]:
 @contextlib.contextmanager
 def logged(log: str | os.PathLike[str] | None, name: str = "moorlife.stages") -> Iterator[logging.Logger]:
     """The logger ``name`` (a child of ``moorlife``), sent to the rule's log file when ``log`` is
-    a path (:func:`moorlife.io.log_to`: also BLAS limited to one thread inside the block)."""
+    a path (:func:`moorlife.io.log_to`).
+
+    BLAS is limited to one thread inside the block either way: the model's set-up uses BLAS,
+    whose sums depend on its thread count, so a runner called without a log (a test, a
+    notebook) must give the bits of the rule, whatever ``OMP_NUM_THREADS`` says.
+    """
     if log is None:
-        yield logging.getLogger(name)
+        from threadpoolctl import threadpool_limits
+
+        with threadpool_limits(limits=1):
+            yield logging.getLogger(name)
         return
     from moorlife.io import log_to
 
