@@ -164,17 +164,18 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
         out["truth_r"] = pd.Series(cmp["r"].values, index=cmp["output"].values.astype(object).astype(str))
         out["noise_r"] = pd.Series(cmp["noise_r"].values, index=out["truth_r"].index)
         dmg = cmp[
-            ["truth_damage", "reconstruction_damage", "bins_damage", "reconstruction_error_pct", "seed_sum_std_pct"]
+            [
+                "truth_damage",
+                "reconstruction_damage",
+                "bins_damage",
+                "reconstruction_error_pct",
+                "bins_error_pct",
+                "seed_sum_std_pct",
+            ]
         ].to_dataframe()
         dmg["z"] = dmg["reconstruction_error_pct"] / dmg["seed_sum_std_pct"]
-        # the life band of results/comparison/summary.csv (lifecycle.summary_table): relative
-        # sigma = hypot(seed CV of one state's hourly damage, max |validation sum error| of the curve)
-        val_err = pd.Series(lc["validation_sum_error"].values, index=out["validation_r"].index)
-        sig = []
-        for curve, _line in dmg.index:
-            var = dict(zip(("sn", "tn"), DAMAGE))[curve]
-            rel = float(np.nanmax(np.abs(val_err[[o for o in val_err.index if o.startswith(var)]])))
-            sig.append(float(np.hypot(stores.get("seed_cv", {}).get(curve, 0.0), rel)))
+        # the life band of results/comparison/summary.csv (lifecycle.summary_table)
+        sig = [lifecycle.band_sigma(lc, curve, stores.get("seed_cv")) for curve, _line in dmg.index]
         dmg["band_sigma_pct"] = 100 * np.asarray(sig)
         dmg["k_needed"] = np.abs(dmg["reconstruction_error_pct"]) / dmg["band_sigma_pct"]
         out["window"] = dmg
@@ -261,9 +262,7 @@ def report(res: dict[tuple[str, str], dict[str, Any]], variants: list[str]) -> s
             )
             if v == variants[0]:
                 lines.append(
-                    f"| {ms} | bins | "
-                    + " | ".join(f"{100 * (w.loc[k, 'bins_damage'] / w.loc[k, 'truth_damage'] - 1):+.1f}" for k in keys)
-                    + " |"
+                    f"| {ms} | bins | " + " | ".join(f"{w.loc[k, 'bins_error_pct']:+.1f}" for k in keys) + " |"
                 )
                 lines.append(
                     f"| {ms} | seed sd of the sum % | "

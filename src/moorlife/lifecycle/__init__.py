@@ -36,6 +36,7 @@ from __future__ import annotations
 from moorlife.lifecycle.adapters import _points as _points
 from moorlife.lifecycle.adapters import _selection_scaling as _selection_scaling
 from moorlife.lifecycle.adapters import (
+    band_sigma,
     discrete_damage_table,
     reconstruct_lifecycle,
     summary_table,
@@ -102,6 +103,7 @@ __all__ = [
     "loo_errors_in_units",
     "suggest_states",
     "life_band",
+    "band_sigma",
     "reconstruct_lifecycle",
     "discrete_damage_table",
     "summary_table",

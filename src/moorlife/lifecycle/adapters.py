@@ -359,6 +359,23 @@ def discrete_damage_table(discrete_states: xr.Dataset, discrete_sims: xr.Dataset
     )
 
 
+def band_sigma(lc: xr.Dataset, curve: str, seed_cv: Mapping[str, float] | None = None) -> float:
+    """Relative standard deviation of one curve's damage, the half-width of the life band over k.
+
+    ``hypot(seed CV, max |validation sum error|)``: the seed CV of the curve's hourly damage
+    (``seed_cv[curve]``, 0 when absent) and the largest relative error of the validation sum of
+    the curve's damage outputs in ``lc`` (``validation_sum_error``; 0 when absent).
+    """
+    o_idx = [lab for lab in lc["output"].values if str(lab).startswith(DAMAGE_VARS[curve])]
+    rel_err = (
+        float(np.nanmax(np.abs(lc["validation_sum_error"].sel(output=o_idx).values)))
+        if ("validation_sum_error" in lc and o_idx)
+        else 0.0
+    )
+    cv = float((seed_cv or {}).get(curve, 0.0))
+    return float(np.hypot(cv, rel_err))
+
+
 def summary_table(
     lifecycles: Mapping[str, xr.Dataset],
     discretes: Mapping[str, xr.Dataset],
@@ -401,17 +418,11 @@ def summary_table(
         dd = discretes.get(ms)
         row0 = mooring.loc[ms]
         for curve in [str(c) for c in lc[names.CURVE].values]:
-            o_idx = [lab for lab in lc["output"].values if str(lab).startswith(DAMAGE_VARS[curve])]
-            rel_err = (
-                float(np.nanmax(np.abs(lc["validation_sum_error"].sel(output=o_idx).values)))
-                if ("validation_sum_error" in lc and o_idx)
-                else 0.0
-            )
-            cv = float((seed_cv or {}).get(curve, 0.0))
+            sigma = band_sigma(lc, curve, seed_cv)
             for line in [str(v) for v in lc[names.LINE].values]:
                 sel = {names.CURVE: curve, names.LINE: line}
                 life = float(lc["fatigue_life_years"].sel(sel))
-                low, high = life_band(life, np.hypot(cv, rel_err), coverage)
+                low, high = life_band(life, sigma, coverage)
                 total = float(lc["lifecycle_damage"].sel(sel))
                 disc = float(dd["discrete_damage"].sel(sel)) if dd is not None else np.nan
                 row = {
