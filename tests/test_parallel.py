@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import time
 from pathlib import Path
 
 import numpy as np
@@ -330,3 +331,36 @@ def test_progress_lines_reach_the_log_and_a_throttled_terminal(tmp_path, cases, 
     terminal = [ln for ln in capfd.readouterr().err.splitlines() if ln.startswith("moorlife: x.zarr: ")]
     assert terminal[-1].startswith(f"moorlife: x.zarr: {n}/{n} states (100 %)"), terminal
     assert 1 <= len(terminal) <= 2, terminal  # the first line, then only the last one within 30 s
+
+
+def _slow_case(case_vars, *, case_ids, scale):
+    time.sleep(0.2)  # long enough for batches to be running when the workers go
+    return noisy_case(case_vars, case_ids=case_ids, scale=scale)
+
+
+class _RestartingSink(_ListSink):
+    """Restarts every worker after the first batch arrives: all their data is lost."""
+
+    def __init__(self, n, batch_size, client):
+        super().__init__(n, batch_size)
+        self.client = client
+        self.restarts = 0
+
+    def write(self, b, result):
+        super().write(b, result)
+        if not self.restarts:
+            self.restarts += 1
+            self.client.restart_workers(list(self.client.scheduler_info()["workers"]))
+
+
+def test_losing_every_worker_mid_run_loses_no_batch(cases, client):
+    """A worker restart (a preempted node, a missed heartbeat) must not cancel the run: the
+    static arguments are recomputed, the running batches rerun, and the bits are unchanged."""
+    n = cases.sizes["case"]
+    sink = _RestartingSink(n, 2, client)
+    parallel.map_batches(_slow_case, cases, sink, dim="case", func_kwargs={"scale": 1.0}, client=client)
+    assert sink.restarts == 1
+    assert sorted(sink.results) == list(range(len(sink.slices)))
+    got = np.concatenate([sink.results[b]["tension_mpm"] for b in range(len(sink.slices))])
+    expected = noisy_case({"hs": cases["hs"].values}, case_ids=cases["case"].values, scale=1.0)["tension_mpm"]
+    np.testing.assert_array_equal(got, expected)

@@ -324,6 +324,11 @@ class Progress:
         return f"{head}{done}/{self.total} states ({pct:.0f} %), {format_duration(elapsed)} elapsed, {eta}"
 
 
+def _static_kwargs(kwargs: dict[str, Any]) -> dict[str, Any]:
+    """The static arguments of every batch, as a task result the scheduler can recompute."""
+    return kwargs
+
+
 def _run_batch(
     func: Callable[..., Mapping[str, np.ndarray]],
     kwargs: Mapping[str, Any],
@@ -409,8 +414,11 @@ def map_batches(
     progress = Progress(len(ids), sum(len(range(len(ids))[slices[b]]) for b in todo), label)
 
     def _submit_all(cl: Any) -> None:
-        [kw] = cl.scatter([dict(func_kwargs)], broadcast=True, hash=False)
         run = uuid.uuid4().hex[:12]
+        # The static arguments are a task, not scattered data: when every worker holding them
+        # is lost (a restart, a preempted node), the scheduler computes them again from the
+        # task; scattered data would be gone for good and cancel every batch still to run.
+        kw = cl.submit(_static_kwargs, dict(func_kwargs), key=f"moorlife-{run}-kwargs", pure=False)
         futures = {}
         for b in todo:
             sl = slices[b]
