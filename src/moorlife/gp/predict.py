@@ -16,7 +16,7 @@ import numpy.typing as npt
 import scipy.linalg as sla
 
 from moorlife.gp.fit import _LN10_SQ, GPModel, chord_embed, correlation
-from moorlife.rbf.kernels import _INV_LN2, _LN2_HI, _LN2_LO, _SHIFTER
+from moorlife.rbf.kernels import exp_parts
 
 __all__ = ["predict_gp", "predict_latent"]
 
@@ -40,7 +40,7 @@ def _mean_rows(
     # out[i, o] += sum_j exp(-|(z_i - c_j) / l_g|^2 / 2) w[o, j] for the outputs o of every length-scale
     # group g (gcols[gptr[g]:gptr[g + 1]]); ct[g] holds the centres scaled by 1 / l_g, transposed.
     # Fused per row (distance, exp, weighted sums in buffers of m that stay in cache); each row by
-    # one thread in a fixed order. exp(-x) as moorlife.rbf.kernels._gaussian_block computes it.
+    # one thread in a fixed order. exp(-x) by moorlife.rbf.kernels.exp_parts.
     n, p = z.shape
     n_g, _, m = ct.shape
     n_blocks = (n + _ROWS - 1) // _ROWS
@@ -59,26 +59,7 @@ def _mean_rows(
                         u = a - ct[g, d, j]
                         d2[j] += u * u
                 for j in range(m):
-                    x = max(-0.5 * d2[j], -708.0)
-                    t = x * _INV_LN2 + _SHIFTER
-                    kk = t - _SHIFTER
-                    r = (x - kk * _LN2_HI) - kk * _LN2_LO
-                    q = 1.6059043836821613e-10
-                    q = q * r + 2.08767569878681e-09
-                    q = q * r + 2.505210838544172e-08
-                    q = q * r + 2.755731922398589e-07
-                    q = q * r + 2.7557319223985893e-06
-                    q = q * r + 2.48015873015873e-05
-                    q = q * r + 0.0001984126984126984
-                    q = q * r + 0.001388888888888889
-                    q = q * r + 0.008333333333333333
-                    q = q * r + 0.041666666666666664
-                    q = q * r + 0.16666666666666666
-                    q = q * r + 0.5
-                    q = q * r + 1.0
-                    q = q * r + 1.0
-                    k[j] = q
-                    tmp[j] = t
+                    k[j], tmp[j] = exp_parts(max(-0.5 * d2[j], -708.0))
                 for j in range(m):
                     bits[j] = ((bits[j] & 0xFFFFFFFF) + 1023) << 52
                 for j in range(m):

@@ -10,7 +10,7 @@ import numba as nb
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["gaussian", "polynomial_basis"]
+__all__ = ["exp_parts", "gaussian", "polynomial_basis"]
 
 
 # exp(-t) for the kernel block: Cody-Waite reduction t = k ln2 + r, |r| <= ln2 / 2, a
@@ -23,6 +23,37 @@ _INV_LN2 = 1.44269504088896338700e00
 _SHIFTER = 6755399441055744.0  # 1.5 * 2**52: x + SHIFTER rounds x to an integer in the low bits
 
 
+@nb.njit(inline="always", cache=True)
+def exp_parts(x: float) -> tuple[float, float]:  # pragma: no cover - numba
+    """``exp(x)`` for ``-708 <= x <= 0``, in two parts: ``exp(x) = p * 2**k``.
+
+    ``p`` is the degree-13 Taylor polynomial of ``exp(r)`` on the reduced argument
+    ``r = x - k ln 2`` (``|r| <= ln 2 / 2``, Cody-Waite split of ``ln 2``). ``t = x / ln 2 +
+    1.5 * 2**52`` carries the integer ``k`` in its low bits: a caller turns it into ``2**k`` in
+    place (``bits = ((bits & 0xFFFFFFFF) + 1023) << 52`` on its int64 view) and multiplies. The
+    three passes (parts, exponent bits, product) vectorise, where ``np.exp`` per element does
+    not; every caller of this one function gets the same bits.
+    """
+    t = x * _INV_LN2 + _SHIFTER
+    k = t - _SHIFTER
+    r = (x - k * _LN2_HI) - k * _LN2_LO
+    p = 1.6059043836821613e-10
+    p = p * r + 2.08767569878681e-09
+    p = p * r + 2.505210838544172e-08
+    p = p * r + 2.755731922398589e-07
+    p = p * r + 2.7557319223985893e-06
+    p = p * r + 2.48015873015873e-05
+    p = p * r + 0.0001984126984126984
+    p = p * r + 0.001388888888888889
+    p = p * r + 0.008333333333333333
+    p = p * r + 0.041666666666666664
+    p = p * r + 0.16666666666666666
+    p = p * r + 0.5
+    p = p * r + 1.0
+    p = p * r + 1.0
+    return p, t
+
+
 @nb.njit(parallel=True, cache=True)
 def _gaussian_block(
     d2: np.ndarray, inv_q2: float, out: np.ndarray, tmp: np.ndarray
@@ -31,26 +62,7 @@ def _gaussian_block(
     bits = tmp.view(np.int64)
     for i in nb.prange(n):
         for j in range(m):
-            x = max(-d2[i, j] * inv_q2, -708.0)
-            t = x * _INV_LN2 + _SHIFTER
-            k = t - _SHIFTER
-            r = (x - k * _LN2_HI) - k * _LN2_LO
-            p = 1.6059043836821613e-10
-            p = p * r + 2.08767569878681e-09
-            p = p * r + 2.505210838544172e-08
-            p = p * r + 2.755731922398589e-07
-            p = p * r + 2.7557319223985893e-06
-            p = p * r + 2.48015873015873e-05
-            p = p * r + 0.0001984126984126984
-            p = p * r + 0.001388888888888889
-            p = p * r + 0.008333333333333333
-            p = p * r + 0.041666666666666664
-            p = p * r + 0.16666666666666666
-            p = p * r + 0.5
-            p = p * r + 1.0
-            p = p * r + 1.0
-            out[i, j] = p
-            tmp[i, j] = t
+            out[i, j], tmp[i, j] = exp_parts(max(-d2[i, j] * inv_q2, -708.0))
         for j in range(m):
             bits[i, j] = ((bits[i, j] & 0xFFFFFFFF) + 1023) << 52
         for j in range(m):
