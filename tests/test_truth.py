@@ -129,6 +129,20 @@ def test_noise_floor_known_answers():
     assert nf["r"][0] == pytest.approx(np.corrcoef(a[:, 0], b[:, 0])[0, 1])
 
 
+def test_noise_ceiling_is_the_r_of_the_expected_value_against_one_seed():
+    """Hours x = s + e with heteroscedastic seed noise (log-normal, like damage): the two seeds
+    correlate at r, the expected value s correlates with one seed at sqrt(r), well above r."""
+    rng = np.random.default_rng(11)
+    s = 10.0 ** (0.5 * rng.normal(size=20_000))
+    x1, x2 = (s * np.exp(rng.normal(scale=0.35, size=s.size) - 0.35**2 / 2) for _ in range(2))
+    nf = T.noise_floor(x1[:, None], x2[:, None])
+    perfect = np.corrcoef(s, x1)[0, 1]
+    assert nf["r"][0] < 0.86 < 0.91 < perfect, "a perfect reconstruction beats the r of two seeds"
+    assert nf["r_ceiling"][0] == pytest.approx(np.sqrt(nf["r"][0]))
+    assert perfect == pytest.approx(nf["r_ceiling"][0], abs=0.01)
+    assert T.noise_floor(x1[:, None], -x1[:, None])["r_ceiling"][0] == 0.0
+
+
 def test_noise_floor_of_a_sum_follows_the_windows_own_values():
     """A relative seed scatter: every seed-2 value 10 % above seed 1. c^2 = sum(0.5 (0.1 x)^2) /
     sum((1.05 x)^2) = 0.005 / 1.1025; over a window whose damage sits in one hour of 100 the
@@ -264,6 +278,7 @@ def test_compare_window_known_answers():
     np.testing.assert_allclose(cmp["truth_cumulative"].isel(hour=-1).values, cmp["truth_damage"].values)
     np.testing.assert_allclose(cmp["bins_cumulative"].isel(hour=-1).values, cmp["bins_damage"].values)
     np.testing.assert_allclose(cmp["noise_r"].values, 1.0)
+    np.testing.assert_allclose(cmp["ceiling_r"].values, 1.0)
     np.testing.assert_allclose(cmp["seed_sum_std_pct"].values, 0.0)
     from moorlife.stages.truth import comparison_table
 

@@ -244,7 +244,9 @@ def report(res: dict[tuple[str, str], dict[str, Any]], variants: list[str]) -> s
             )
             if v == variants[0]:
                 nr = m["noise_r"]
-                lines.append(f"| {ms} | noise floor | | | " + " | ".join(f"{nr[o]:.3f}" for o in dl) + " |")
+                lines.append(f"| {ms} | r of two seeds | | | " + " | ".join(f"{nr[o]:.3f}" for o in dl) + " |")
+                ceil = np.sqrt(nr.clip(0.0, 1.0))  # truth.noise_floor: the r of a perfect reconstruction
+                lines.append(f"| {ms} | ceiling, sqrt | | | " + " | ".join(f"{ceil[o]:.3f}" for o in dl) + " |")
         lines += [
             "",
             "### Window damage: reconstruction error % against the truth (z = error / seed sd of the sum)",

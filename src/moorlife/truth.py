@@ -317,13 +317,21 @@ def noise_floor(
     Returns
     -------
     dict
-        ``r`` (k,): correlation of the two seeds, the best per-hour r any reconstruction can
-        reach against one realisation per hour; ``sum_difference_pct`` (k,):
+        ``r`` (k,): correlation of the two seeds; ``r_ceiling`` (k,): ``sqrt(r)``, the
+        per-hour r of a perfect reconstruction against one realisation per hour (below);
+        ``sum_difference_pct`` (k,):
         ``100 (sum seed2 - sum seed1) / sum seed1`` over the subset; ``sum_std_pct`` (k,):
         the seed scatter (one standard deviation) of a sum over the window, in %.
 
     Notes
     -----
+    One realisation of an hour is ``x = s + e``: its expected value ``s`` (what a perfect
+    reconstruction returns) plus a seed error ``e`` of zero mean, independent between seeds.
+    Two seeds correlate at ``r = var(s) / (var(s) + E var(e))``, and ``s`` correlates with one
+    realisation at ``cov(s, x) / sqrt(var(s) var(x)) = sqrt(r)``. So ``sqrt(r)``, not ``r``, is
+    the ceiling of the per-hour r against the truth: a reconstruction may exceed ``r`` (it
+    averages the noise of the training states out), never ``sqrt(r)`` but by sampling.
+
     Without ``window``: ``100 sqrt(n mean((x1 - x2)^2 / 2)) / (n mean(x1, x2))``, the subset's
     mean per-hour seed variance times the window's hours. That is right for outputs of even
     size; the damage is not: a year's damage sits in a few storm hours (in the MS2 truth year
@@ -351,7 +359,13 @@ def noise_floor(
                 raise ValueError(f"window {w.shape} and seeds {a.shape} differ in outputs")
             c2 = np.sum(0.5 * (a - b) ** 2, axis=0) / np.sum((0.5 * (a + b)) ** 2, axis=0)
             std_pct = 100.0 * np.sqrt(c2 * np.sum(w * w, axis=0)) / np.sum(w, axis=0)
-    return {"r": r, "sum_difference_pct": signed_error_pct(b.sum(axis=0), a.sum(axis=0)), "sum_std_pct": std_pct}
+    ceiling = np.sqrt(np.clip(r, 0.0, 1.0))
+    return {
+        "r": r,
+        "r_ceiling": ceiling,
+        "sum_difference_pct": signed_error_pct(b.sum(axis=0), a.sum(axis=0)),
+        "sum_std_pct": std_pct,
+    }
 
 
 # --------------------------------------------------------------------------- xarray adapter
@@ -388,8 +402,8 @@ def compare_window(
     Returns
     -------
     xarray.Dataset
-        Per ``output``: ``r``, ``rmse``, ``bias``, ``sum_error`` and the noise floor
-        ``noise_r``; per ``curve`` and ``line``: ``truth_damage``, ``reconstruction_damage``,
+        Per ``output``: ``r``, ``rmse``, ``bias``, ``sum_error``, the r of two seeds
+        ``noise_r`` and the ceiling of ``r``, ``ceiling_r = sqrt(noise_r)`` (:func:`noise_floor`); per ``curve`` and ``line``: ``truth_damage``, ``reconstruction_damage``,
         ``bins_damage``, ``reconstruction_error_pct``, ``bins_error_pct``,
         ``seed_sum_std_pct`` and ``seed_sum_difference_pct``; per ``hour``: the truth and
         reconstructed values and the cumulative damage of the three.
@@ -436,7 +450,12 @@ def compare_window(
         y2 = lifecycle.stack_outputs(seed2, c, cols)
         noise = noise_floor(y_true[pos], y2, n_window=idx.size, window=y_true)
         out = out.assign_coords(seed2_hour=("seed2_hour", idx[pos]))
-        out["noise_r"] = ("output", noise["r"], _a(f"r of two seeds on {pos.size} hours: the noise floor"))
+        out["noise_r"] = ("output", noise["r"], _a(f"r of two seeds on {pos.size} hours"))
+        out["ceiling_r"] = (
+            "output",
+            noise["r_ceiling"],
+            _a("sqrt(noise_r): the per-hour r of a perfect reconstruction against one realisation"),
+        )
 
     curves = [cv for cv in names.CURVES if lifecycle.DAMAGE_VARS[cv] in truth and lifecycle.DAMAGE_VARS[cv] in rec]
     if curves:

@@ -43,8 +43,8 @@ def truth_scatter(cmp: xr.Dataset, *, title: str = "") -> Figure:
             for axis in (ax.xaxis, ax.yaxis):
                 axis.set_minor_formatter(NullFormatter())
         text = f"r = {float(cmp['r'].values[j]):.3f}"
-        if "noise_r" in cmp:
-            text += f"\nseeds r = {float(cmp['noise_r'].values[j]):.3f}"
+        if "ceiling_r" in cmp:
+            text += f"\nceiling = {float(cmp['ceiling_r'].values[j]):.3f}"
         ax.text(0.04, 0.96, text, transform=ax.transAxes, va="top", fontsize=8)
         ax.set_title(lab, fontsize=9)
         ax.tick_params(labelsize=7)

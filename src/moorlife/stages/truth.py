@@ -83,14 +83,14 @@ def seed2_store(hours: PathLike, output: PathLike, *, n: int) -> xr.Dataset:
 def comparison_table(cmp: xr.Dataset) -> pd.DataFrame:
     """The CSV of the comparison: one row per output, then one per (curve, line).
 
-    Output rows: ``r``, ``rmse``, ``bias``, ``sum_error``, ``noise_r``. Damage rows:
+    Output rows: ``r``, ``rmse``, ``bias``, ``sum_error``, ``noise_r``, ``ceiling_r``. Damage rows:
     ``truth_damage``, ``reconstruction_damage``, ``bins_damage``, the signed errors in % and
     the seed scatter of the sum in %.
     """
     rows: list[dict[str, Any]] = []
     for j, lab in enumerate(cmp["output"].values):
         row = {"kind": "output", "output": str(lab)}
-        for k in ("r", "rmse", "bias", "sum_error", "noise_r"):
+        for k in ("r", "rmse", "bias", "sum_error", "noise_r", "ceiling_r"):
             if k in cmp:
                 row[k] = float(cmp[k].values[j])
         rows.append(row)
