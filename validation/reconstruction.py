@@ -163,16 +163,8 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
         )
         out["truth_r"] = pd.Series(cmp["r"].values, index=cmp["output"].values.astype(object).astype(str))
         out["noise_r"] = pd.Series(cmp["noise_r"].values, index=out["truth_r"].index)
-        dmg = cmp[
-            [
-                "truth_damage",
-                "reconstruction_damage",
-                "bins_damage",
-                "reconstruction_error_pct",
-                "bins_error_pct",
-                "seed_sum_std_pct",
-            ]
-        ].to_dataframe()
+        out["ceiling_r"] = pd.Series(cmp["ceiling_r"].values, index=out["truth_r"].index)
+        dmg = cmp[[k for k in truth.WINDOW_DAMAGE_VARS if k in cmp]].to_dataframe()
         dmg["z"] = dmg["reconstruction_error_pct"] / dmg["seed_sum_std_pct"]
         # the life band of results/comparison/summary.csv (lifecycle.summary_table)
         sig = [lifecycle.band_sigma(lc, curve, stores.get("seed_cv")) for curve, _line in dmg.index]
@@ -245,7 +237,7 @@ def report(res: dict[tuple[str, str], dict[str, Any]], variants: list[str]) -> s
             if v == variants[0]:
                 nr = m["noise_r"]
                 lines.append(f"| {ms} | r of two seeds | | | " + " | ".join(f"{nr[o]:.3f}" for o in dl) + " |")
-                ceil = np.sqrt(nr.clip(0.0, 1.0))  # truth.noise_floor: the r of a perfect reconstruction
+                ceil = m["ceiling_r"]
                 lines.append(f"| {ms} | ceiling, sqrt | | | " + " | ".join(f"{ceil[o]:.3f}" for o in dl) + " |")
         lines += [
             "",

@@ -43,6 +43,7 @@ __all__ = [
     "window_bin_damage",
     "signed_error_pct",
     "noise_floor",
+    "WINDOW_DAMAGE_VARS",
     "compare_window",
 ]
 
@@ -287,6 +288,18 @@ def window_bin_damage(bins: npt.ArrayLike, bin_damage: npt.ArrayLike) -> np.ndar
     d = np.asarray(bin_damage, dtype=float)
     hours = np.bincount(np.asarray(bins, dtype=np.int64), minlength=d.shape[0]).astype(float)
     return np.tensordot(hours, d, axes=(0, 0))
+
+
+#: The window-damage variables of :func:`compare_window`, per curve and line, in table order.
+WINDOW_DAMAGE_VARS: tuple[str, ...] = (
+    "truth_damage",
+    "reconstruction_damage",
+    "bins_damage",
+    "reconstruction_error_pct",
+    "bins_error_pct",
+    "seed_sum_std_pct",
+    "seed_sum_difference_pct",
+)
 
 
 def signed_error_pct(estimate: npt.ArrayLike, truth: npt.ArrayLike) -> np.ndarray:

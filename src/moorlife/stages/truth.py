@@ -99,15 +99,7 @@ def comparison_table(cmp: xr.Dataset) -> pd.DataFrame:
             for ln in cmp[names.LINE].values:
                 sel = {names.CURVE: cv, names.LINE: ln}
                 row = {"kind": "damage", "output": f"damage_{cv}/{ln}", "curve": str(cv), "line": str(ln)}
-                for k in (
-                    "truth_damage",
-                    "reconstruction_damage",
-                    "bins_damage",
-                    "reconstruction_error_pct",
-                    "bins_error_pct",
-                    "seed_sum_std_pct",
-                    "seed_sum_difference_pct",
-                ):
+                for k in kernels.WINDOW_DAMAGE_VARS:
                     if k in cmp:
                         row[k] = float(cmp[k].sel(sel))
                 rows.append(row)
