@@ -191,6 +191,54 @@ def test_seed_lives_and_band():
     assert lifecycle.life_band(10.0, 1.5)[1] == np.inf
 
 
+def test_seed_scatter_of_a_sum_matches_independent_seeds():
+    """sum_seed_cv against the sd of sums of hours each drawn with its own seed error."""
+    rng = np.random.default_rng(3)
+    hours = rng.lognormal(-10, 1.5, 500)  # a few hours dominate, as storms do
+    cv = 0.17
+    draws = hours * (1 + cv * rng.standard_normal((20000, hours.size)))
+    measured = draws.sum(axis=1).std() / hours.sum()
+    predicted = lifecycle.sum_seed_cv(hours, cv)
+    assert predicted == pytest.approx(measured, rel=0.02)
+    assert cv / np.sqrt(hours.size) < predicted < cv
+    # the two limits: one hour keeps its CV, n equal hours divide it by sqrt(n)
+    assert lifecycle.sum_seed_cv([0, 0, 3.0], cv) == pytest.approx(cv)
+    assert lifecycle.sum_seed_cv(np.ones(400), cv) == pytest.approx(cv / 20)
+    np.testing.assert_allclose(lifecycle.sum_seed_cv(np.zeros((5, 2)), cv), 0.0)
+
+
+def test_band_sigma_takes_the_seed_scatter_of_the_sum():
+    n = 10_000
+    hourly = np.full((n, 3), 1e-6)
+    hourly[0, 1] = 1e-3  # one storm hour holds most of M2's sum
+    lc = xr.Dataset(
+        {
+            "damage_sn": (("time", "line"), hourly),
+            "validation_sum_error": ("output", [0.04, -0.06, 0.02, 0.9]),
+        },
+        coords={
+            "time": np.arange(n),
+            "line": list(names.LINES),
+            "output": [*(f"damage_sn/{x}" for x in names.LINES), "x"],
+        },
+    )
+    seed = lifecycle.sum_seed_cv(hourly, 0.2).max()  # M2's, set by its storm hour
+    assert lifecycle.band_sigma(lc, "sn", {"sn": 0.2}) == pytest.approx(np.hypot(seed, 0.06))
+    assert lifecycle.band_sigma(lc, "sn") == pytest.approx(0.06)
+    # without hourly damage the one-hour CV stands for the sum: an upper bound
+    assert lifecycle.band_sigma(lc.drop_vars("damage_sn"), "sn", {"sn": 0.2}) == pytest.approx(np.hypot(0.2, 0.06))
+
+
+def test_coverage_needed_and_its_calibration():
+    k = lifecycle.coverage_needed([15.7, -3.6, 0.0], [12.18, 13.89, 12.0])
+    np.testing.assert_allclose(k, [15.7 / 12.18, 3.6 / 13.89, 0.0])
+    assert lifecycle.coverage_needed(1.0, 0.0) == np.inf and lifecycle.coverage_needed(0.0, 0.0) == 0.0
+    assert lifecycle.calibrate_coverage([*k, np.nan]) == pytest.approx(1.30)
+    assert lifecycle.calibrate_coverage([0.5, 1.0]) == pytest.approx(1.0)  # a multiple of the step stays
+    with pytest.raises(ValueError, match="no measured case"):
+        lifecycle.calibrate_coverage([np.nan, np.inf])
+
+
 def test_mean_stress_table_reproduces_paper_table8_static_rows():
     # Barrera et al. (2019) Table 8 (static position), from Table 4 pretension and link diameter.
     mooring = pd.DataFrame(

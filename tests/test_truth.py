@@ -280,10 +280,15 @@ def test_compare_window_known_answers():
     np.testing.assert_allclose(cmp["noise_r"].values, 1.0)
     np.testing.assert_allclose(cmp["ceiling_r"].values, 1.0)
     np.testing.assert_allclose(cmp["seed_sum_std_pct"].values, 0.0)
+    # no validation term in this reconstruction and no seed scatter: a band of zero width,
+    # which no finite coverage factor stretches over a 10 % error
+    np.testing.assert_allclose(cmp["band_sigma_pct"].values, 0.0)
+    assert np.isinf(cmp["coverage_needed"].values).all()
     from moorlife.stages.truth import comparison_table
 
     table = comparison_table(cmp)
     assert set(table["kind"]) == {"output", "damage"} and len(table) == 4 + 3
+    assert {"band_sigma_pct", "coverage_needed"} <= set(table.columns)
     # a reconstruction from another hindcast is refused
     bad = rec.copy(deep=True)
     bad["hs"][:] = 99.0
@@ -529,3 +534,18 @@ def test_bad_truth_config_stops_before_any_work(tmp_path, yaml, pattern):
     assert res.returncode != 0
     assert re.search(pattern, res.stdout + res.stderr), (res.stdout + res.stderr)[-3000:]
     assert not (work / "results").exists(), "no job may start with a bad truth config"
+
+
+def test_compare_window_band_and_the_coverage_it_needs():
+    """The window's band: hypot(measured seed scatter of the sum, max |validation sum error|)."""
+    truth, rec, states, sims, dmg, _ = _constructed()
+    rec = rec.assign_coords(output=["surge_mpm", "damage_sn/M1", "damage_sn/M2", "damage_sn/M3"])
+    rec["validation_sum_error"] = ("output", [0.5, 0.03, -0.08, 0.05])  # surge_mpm is not a damage
+    seed2 = truth.isel(case=[0, 13, 26, 39]).copy(deep=True)
+    seed2["damage_sn"] = seed2["damage_sn"] * np.array([1.1, 0.9, 1.0])
+    cmp = T.compare_window(truth, rec, states, sims, outputs=["surge_mpm", "damage_sn"], seed2=seed2)
+    seed = cmp["seed_sum_std_pct"].values
+    assert (seed[0, :2] > 0).all() and seed[0, 2] == 0.0
+    expected = np.hypot(seed, 8.0)  # the largest |validation sum error| of the curve, in %
+    np.testing.assert_allclose(cmp["band_sigma_pct"].values, expected, rtol=1e-12)
+    np.testing.assert_allclose(cmp["coverage_needed"].values, 10.0 / expected, rtol=1e-12)

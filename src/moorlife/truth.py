@@ -299,6 +299,8 @@ WINDOW_DAMAGE_VARS: tuple[str, ...] = (
     "bins_error_pct",
     "seed_sum_std_pct",
     "seed_sum_difference_pct",
+    "band_sigma_pct",
+    "coverage_needed",
 )
 
 
@@ -388,6 +390,32 @@ def _a(long_name: str, units: str = "1") -> dict[str, str]:
     return {"units": units, "long_name": long_name}
 
 
+def _band_vars(out: xr.Dataset, reconstruction: xr.Dataset, curves: Sequence[str]) -> xr.Dataset:
+    """The life band on the window, and the coverage factor it needs to hold the truth.
+
+    The band's sd on the window is :func:`moorlife.lifecycle.band_sigma_of` of the window's
+    measured seed scatter (``seed_sum_std_pct``; 0 without the second seed) and the fit's
+    :func:`moorlife.lifecycle.validation_sum_term` (the reconstruction's validation states);
+    ``coverage_needed`` is ``|reconstruction_error_pct| / band_sigma_pct``, what
+    ``lifecycle.uncertainty.coverage`` must be for the truth to lie inside the band.
+    """
+    cd = (names.CURVE, names.LINE)
+    val = np.array([100.0 * lifecycle.validation_sum_term(reconstruction, cv) for cv in curves])[:, None]
+    seed = out["seed_sum_std_pct"].values if "seed_sum_std_pct" in out else np.zeros_like(val)
+    sigma = lifecycle.band_sigma_of(seed, np.broadcast_to(val, out["reconstruction_error_pct"].shape))
+    out["band_sigma_pct"] = (
+        cd,
+        sigma,
+        _a("life band sd on the window: hypot(seed scatter of the sum, max |validation sum error|)", "%"),
+    )
+    out["coverage_needed"] = (
+        cd,
+        lifecycle.coverage_needed(out["reconstruction_error_pct"].values, sigma),
+        _a("|reconstruction error| / band_sigma_pct: the coverage factor that holds the truth"),
+    )
+    return out
+
+
 def compare_window(
     truth: xr.Dataset,
     reconstruction: xr.Dataset,
@@ -418,7 +446,9 @@ def compare_window(
         Per ``output``: ``r``, ``rmse``, ``bias``, ``sum_error``, the r of two seeds
         ``noise_r`` and the ceiling of ``r``, ``ceiling_r = sqrt(noise_r)`` (:func:`noise_floor`); per ``curve`` and ``line``: ``truth_damage``, ``reconstruction_damage``,
         ``bins_damage``, ``reconstruction_error_pct``, ``bins_error_pct``,
-        ``seed_sum_std_pct`` and ``seed_sum_difference_pct``; per ``hour``: the truth and
+        ``seed_sum_std_pct`` and ``seed_sum_difference_pct``, the life band's sd on the window
+        ``band_sigma_pct`` and the ``coverage_needed`` to hold the truth (:func:`_band_vars`);
+        per ``hour``: the truth and
         reconstructed values and the cumulative damage of the three.
     """
     c = names.CASE
@@ -531,6 +561,7 @@ def compare_window(
                     [[noise[key][pos_of[f"{lifecycle.DAMAGE_VARS[cv]}/{ln}"]] for ln in lines] for cv in curves]
                 )
                 out[f"seed_{key}"] = (cd, vals, _a(text, "%"))
+        out = _band_vars(out, reconstruction, curves)
     out.attrs.update(
         {
             "n_hours": int(idx.size),

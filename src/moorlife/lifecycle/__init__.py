@@ -40,6 +40,7 @@ from moorlife.lifecycle.adapters import (
     discrete_damage_table,
     reconstruct_lifecycle,
     summary_table,
+    validation_sum_term,
 )
 from moorlife.lifecycle.damage import (
     DAMAGE_VARS,
@@ -72,7 +73,15 @@ from moorlife.lifecycle.sensitivity import (
 )
 from moorlife.lifecycle.settings import GPBounds, GPSettings, RBFSettings, rbf_settings
 from moorlife.lifecycle.spaces import ThrustCurve, space_inputs, thrust_at, thrust_curve
-from moorlife.lifecycle.uncertainty import error_indicator, life_band, suggest_states
+from moorlife.lifecycle.uncertainty import (
+    band_sigma_of,
+    calibrate_coverage,
+    coverage_needed,
+    error_indicator,
+    life_band,
+    suggest_states,
+    sum_seed_cv,
+)
 
 __all__ = [
     "HOURS_PER_YEAR",
@@ -104,6 +113,11 @@ __all__ = [
     "suggest_states",
     "life_band",
     "band_sigma",
+    "band_sigma_of",
+    "validation_sum_term",
+    "sum_seed_cv",
+    "coverage_needed",
+    "calibrate_coverage",
     "reconstruct_lifecycle",
     "discrete_damage_table",
     "summary_table",

@@ -8,7 +8,15 @@ import numpy.typing as npt
 from moorlife import gp, rbf
 from moorlife.lifecycle.spaces import space_inputs
 
-__all__ = ["error_indicator", "suggest_states", "life_band"]
+__all__ = [
+    "error_indicator",
+    "suggest_states",
+    "life_band",
+    "sum_seed_cv",
+    "band_sigma_of",
+    "coverage_needed",
+    "calibrate_coverage",
+]
 
 
 def error_indicator(
@@ -144,3 +152,78 @@ def life_band(life_years: npt.ArrayLike, rel_sigma: npt.ArrayLike, k: float = 1.
     with np.errstate(divide="ignore"):
         hi = np.where(s < 1, life / np.where(s < 1, 1 - s, 1.0), np.inf)
     return life / (1 + s), hi
+
+
+def sum_seed_cv(hourly: npt.ArrayLike, hour_cv: float, axis: int = 0) -> np.ndarray:
+    """Seed scatter (relative, one sd) of a sum of hourly damages, from the seed CV of one hour.
+
+    Each hour's damage is one realisation of its sea state, with an independent seed error of
+    relative size ``hour_cv`` (``var(x_h) = c^2 x_h^2``, the model of
+    :func:`moorlife.truth.noise_floor`). The sum's relative sd is then
+    ``c sqrt(sum x_h^2) / sum x_h``: ``c`` for one hour, ``c / sqrt(n)`` for ``n`` equal hours,
+    and in between for a sum that a few storm hours dominate.
+
+    Parameters
+    ----------
+    hourly : array_like
+        Hourly damages (>= 0) along ``axis``.
+    hour_cv : float
+        Seed CV of one hour's damage (the seed sensitivity).
+    axis : int
+
+    Returns
+    -------
+    numpy.ndarray
+        The relative sd of the sum (0 where the sum is 0).
+    """
+    x = np.clip(np.asarray(hourly, dtype=float), 0.0, None)
+    total = x.sum(axis=axis)
+    root = np.sqrt(np.sum(x * x, axis=axis))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(total > 0, float(hour_cv) * root / np.where(total > 0, total, 1.0), 0.0)
+
+
+def band_sigma_of(seed_sum_cv: npt.ArrayLike, validation_error: npt.ArrayLike) -> np.ndarray:
+    """Relative sd of a damage sum: ``hypot(seed scatter of the sum, |validation sum error|)``.
+
+    The seed term is :func:`sum_seed_cv` (or a measured one); the reconstruction term is the
+    relative error of the validation states' damage sum, the fit's own error estimate.
+    """
+    return np.hypot(np.asarray(seed_sum_cv, dtype=float), np.abs(np.asarray(validation_error, dtype=float)))
+
+
+def coverage_needed(error: npt.ArrayLike, sigma: npt.ArrayLike) -> np.ndarray:
+    """The coverage factor a band of sd ``sigma`` needs to hold a measured relative ``error``.
+
+    ``|error| / sigma`` (both relative, or both in %): the truth lies inside the band
+    ``k sigma`` exactly when ``k`` is at least this.
+    """
+    e, s = np.abs(np.asarray(error, dtype=float)), np.asarray(sigma, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(s > 0, e / np.where(s > 0, s, 1.0), np.where(e > 0, np.inf, 0.0))
+
+
+def calibrate_coverage(needed: npt.ArrayLike, step: float = 0.05) -> float:
+    """The coverage factor calibrated on measured cases: the smallest that holds every one.
+
+    Parameters
+    ----------
+    needed : array_like
+        :func:`coverage_needed` of each case measured against a truth (NaN: not measured).
+    step : float
+        Rounded up to a multiple of ``step``.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ValueError
+        With no finite case.
+    """
+    k = np.asarray(needed, dtype=float).ravel()
+    k = k[np.isfinite(k)]
+    if k.size == 0:
+        raise ValueError("calibrate_coverage: no measured case (every coverage_needed is NaN or infinite)")
+    return float(np.ceil(k.max() / step - 1e-9) * step)
