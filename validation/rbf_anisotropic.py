@@ -1,6 +1,6 @@
 """Exploratory (issue 22): weights on the scalar coordinates of the RBF, chosen by leave-one-out.
 
-    OMP_NUM_THREADS=1 python validation/rbf_anisotropic.py RESULTS MS1 [MS2 ...] [--sweeps 2]
+    OMP_NUM_THREADS=1 python validation/rbf_anisotropic.py RESULTS MS1 [MS2 ...] [--sweeps 2] [--criterion log]
 
 For each system with ``RESULTS/{ms}/simulations.zarr``, and each damage output of the S-N curve
 (one per line), a Gaussian RBF with a linear tail on ``log10`` of the damage, as the paper's
@@ -10,7 +10,8 @@ method, in two metrics:
   ``(cos, sin) / pi``, the chord distance), ``q0`` by leave-one-out;
 - weighted: each scalar coordinate (wind speed, Hs, Tp) multiplied by a weight, the weights
   found by coordinate search (factors 0.5, 0.7, 1.4, 2 per coordinate and sweep, a step kept
-  when it lowers the leave-one-out RMSE in the damage's units by 0.5 %), ``q0`` again by
+  when it lowers the leave-one-out RMSE by 0.5 %: of the damage in its units, or with
+  ``--criterion log`` of its log10), ``q0`` again by
   leave-one-out at every step.
 
 Both are fitted on the training states only (the closed-form leave-one-out of Rippa on the
@@ -69,12 +70,19 @@ def predict(z: np.ndarray, c: np.ndarray, q: float, zn: np.ndarray) -> np.ndarra
     return np.exp(-_sq(zn, z) / (2 * q * q)) @ c[:n] + np.column_stack([np.ones(len(zn)), zn]) @ c[n:]
 
 
-def best_shape(z: np.ndarray, ly: np.ndarray) -> tuple[float, float, np.ndarray]:
-    """``(LOO RMSE in units, q0, coefficients)`` of the best ``q0`` of :data:`SHAPES`."""
+def best_shape(z: np.ndarray, ly: np.ndarray, criterion: str = "units") -> tuple[float, float, np.ndarray]:
+    """``(LOO RMSE, q0, coefficients)`` of the best ``q0`` of :data:`SHAPES`.
+
+    ``criterion``: ``"units"``, the RMSE of the back-transformed residuals (the damage's units);
+    ``"log"``, of the log10 residuals.
+    """
     best = (np.inf, 0.0, np.empty(0))
     for q in SHAPES:
         c, loo = fit_loo(z, ly, q)
-        e = float(np.sqrt(np.mean((10**ly - 10 ** (ly - np.clip(loo, -3, 3))) ** 2)))
+        if criterion == "log":
+            e = float(np.sqrt(np.mean(loo**2)))
+        else:
+            e = float(np.sqrt(np.mean((10**ly - 10 ** (ly - np.clip(loo, -3, 3))) ** 2)))
         if e < best[0]:
             best = (e, float(q), c)
     return best
@@ -85,6 +93,7 @@ def main() -> None:
     ap.add_argument("results", type=Path)
     ap.add_argument("systems", nargs="+")
     ap.add_argument("--sweeps", type=int, default=2)
+    ap.add_argument("--criterion", choices=("units", "log"), default="units")
     args = ap.parse_args()
     cases0 = open_zarr(args.results / "selection" / "cases.zarr")
     print(
@@ -107,14 +116,14 @@ def main() -> None:
             ly = np.log10(np.maximum(y[:, j], np.min(y[y[:, j] > 0, j])))
             t0 = time.process_time()
             w = np.ones(x.shape[1])
-            e0, q0, c0 = best_shape(features(x[tr], lo, span, w), ly[tr])
+            e0, q0, c0 = best_shape(features(x[tr], lo, span, w), ly[tr], args.criterion)
             e, q, c = e0, q0, c0
             for _ in range(args.sweeps):
                 for k in scalars:
                     for f in FACTORS:
                         w2 = w.copy()
                         w2[k] *= f
-                        e2, q2, c2 = best_shape(features(x[tr], lo, span, w2), ly[tr])
+                        e2, q2, c2 = best_shape(features(x[tr], lo, span, w2), ly[tr], args.criterion)
                         if e2 < 0.995 * e:
                             e, q, c, w = e2, q2, c2, w2
             cpu = time.process_time() - t0
