@@ -2,6 +2,7 @@
 
     python validation/band_calibration.py results/MS2/truth_comparison.csv [more ...]
     python validation/band_calibration.py validation/data/truth_1985_MS2.csv=results/MS2/lifecycle.zarr
+    python validation/band_calibration.py --results results [CSV ...]
 
 Each argument is a truth comparison's CSV (the ``truth_compare`` rule's
 ``results/{ms}/truth_comparison.csv``). A CSV written before the comparison carried the band
@@ -9,6 +10,11 @@ Each argument is a truth comparison's CSV (the ``truth_compare`` rule's
 reconstruction, whose validation states give the band's reconstruction term; the seed term is
 the CSV's measured ``seed_sum_std_pct``. The arithmetic is the comparison's own
 (``moorlife.lifecycle.band_sigma_of``, ``coverage_needed``).
+
+``--results DIR`` first prints, for every ``DIR/{ms}/lifecycle.zarr``, the band of the life-cycle
+damage (S-N): the seed scatter of the sum per line, the validation term, and the band's sd with
+one hour's seed CV (the model before) and with the sum's (``lifecycle.band_sigma``); the seed CV
+is that of ``DIR/sensitivity/seeds.zarr``, as the compare stage reads it.
 
 Prints one row per window, line and curve (error, band sd, coverage needed), how many cases the
 band holds at ``config/config.yaml``'s ``lifecycle.uncertainty.coverage``, and the calibrated factor: the
@@ -44,10 +50,39 @@ def cases(arg: str) -> pd.DataFrame:
     return df
 
 
+def life_bands(results: Path) -> None:
+    """The table of the life-cycle band per system (module docstring)."""
+    from moorlife import lifecycle
+    from moorlife.io import open_zarr
+    from moorlife.stages.compare import _seed_cv
+
+    cv = _seed_cv(results / "sensitivity" / "seeds.zarr")
+    print(f"seed CV of one hour's damage: {100 * cv['sn']:.1f} %\n")
+    print(
+        "| system | seed scatter of the sum M1 / M2 / M3 % | max \\|validation sum error\\| % | band sd before / now % |"
+    )
+    print("|---|---|---|---|")
+    for path in sorted(results.glob("MS*/lifecycle.zarr")):
+        lc = open_zarr(path)
+        seed = [
+            100 * float(lifecycle.sum_seed_cv(lc["damage_sn"].sel(line=ln).values, cv["sn"]))
+            for ln in lc["line"].values
+        ]
+        val = 100 * lifecycle.validation_sum_term(lc, "sn")
+        before, now = 100 * np.hypot(cv["sn"], val / 100), 100 * lifecycle.band_sigma(lc, "sn", cv)
+        print(f"| {path.parent.name} | {' / '.join(f'{x:.2f}' for x in seed)} | {val:.1f} | {before:.1f} / {now:.1f} |")
+    print()
+
+
 def main(argv: list[str]) -> int:
     from moorlife import lifecycle
     from moorlife.io import read_yaml
 
+    if argv[:1] == ["--results"] and len(argv) >= 2:
+        life_bands(Path(argv[1]))
+        argv = argv[2:]
+        if not argv:
+            return 0
     if not argv:
         print(__doc__)
         return 2
