@@ -94,6 +94,7 @@ def main() -> None:
     ap.add_argument("systems", nargs="+")
     ap.add_argument("--sweeps", type=int, default=2)
     ap.add_argument("--criterion", choices=("units", "log"), default="units")
+    ap.add_argument("--start", default="1,1,1", help="initial weights of W, Hs, Tp (with --sweeps 0: fixed)")
     args = ap.parse_args()
     cases0 = open_zarr(args.results / "selection" / "cases.zarr")
     print(
@@ -117,7 +118,8 @@ def main() -> None:
             t0 = time.process_time()
             w = np.ones(x.shape[1])
             e0, q0, c0 = best_shape(features(x[tr], lo, span, w), ly[tr], args.criterion)
-            e, q, c = e0, q0, c0
+            w[scalars] = [float(v) for v in args.start.split(",")]
+            e, q, c = best_shape(features(x[tr], lo, span, w), ly[tr], args.criterion)
             for _ in range(args.sweeps):
                 for k in scalars:
                     for f in FACTORS:
