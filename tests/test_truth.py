@@ -18,7 +18,7 @@ import xarray as xr
 from test_workflow import OVERLAYS, SNAKEMAKE, clone_study, copy_repo, kill_during_fanout, smk
 
 from moorlife import io as mio
-from moorlife import names, selection
+from moorlife import lifecycle, names, selection
 from moorlife import truth as T
 
 # --------------------------------------------------------------------------- window and subset
@@ -377,6 +377,13 @@ def test_truth_window_end_to_end(truth_study):
         lc["surge_mpm"].isel(time=tr["hindcast_index"].values).values,
     )
     np.testing.assert_array_equal(cmp["truth"].sel(output="damage_sn/M2").values, tr["damage_sn"].sel(line="M2").values)
+    # the window's band holds the fit's validation term beside the measured seed scatter
+    for cv in ("sn", "tn"):
+        val = 100 * lifecycle.validation_sum_term(lc, cv)
+        assert val > 0
+        np.testing.assert_allclose(
+            cmp["band_sigma_pct"].sel(curve=cv).values, np.hypot(cmp["seed_sum_std_pct"].sel(curve=cv).values, val)
+        )
     # nothing left to do; the default target does not contain the truth
     dry = smk(w, TARGET, "-n", overlays=_ov())
     assert "Nothing to be done" in dry.stdout + dry.stderr

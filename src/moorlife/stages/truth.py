@@ -126,6 +126,7 @@ def run(
 
     lc = open_zarr(lifecycle, load=False)
     keep = [v for v in lc.data_vars if names.TIME in lc[v].dims and (v in compared or v in names.METOCEAN_VARS)]
+    keep += [v for v in ("validation_sum_error",) if v in lc]  # the band's reconstruction term
     lc = lc[keep].load()
     cmp = kernels.compare_window(
         open_zarr(truth),
