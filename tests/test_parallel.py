@@ -375,3 +375,18 @@ def test_static_arguments_arrive_as_given(cases, client):
     sink = _ListSink(cases.sizes["case"], 8)
     parallel.map_batches(_echo_spec, cases, sink, dim="case", func_kwargs={"spec": (len, [1, 2])}, client=client)
     assert all(r["ok"].all() for r in sink.results.values())
+
+
+def _pid_case(case_vars, *, case_ids, blob):
+    time.sleep(0.3)  # each batch long enough that an idle worker would take some
+    return {"pid": np.full(len(case_ids), os.getpid()), "n": np.full(len(case_ids), blob.size)}
+
+
+def test_batches_run_on_every_worker(cases, client):
+    """A batch goes where its inputs are: the static arguments must reach every worker, or
+    every batch queues behind the one worker that computed them (2 workers as slow as 1)."""
+    sink = _ListSink(cases.sizes["case"], 2)  # 12 batches
+    blob = np.zeros(2_000_000)  # 16 MB of static arguments, like a platform model
+    parallel.map_batches(_pid_case, cases, sink, dim="case", func_kwargs={"blob": blob}, client=client)
+    pids = {int(r["pid"][0]) for r in sink.results.values()}
+    assert len(pids) == 2, f"every batch ran in one worker process ({pids})"
