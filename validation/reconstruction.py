@@ -166,10 +166,8 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
         out["ceiling_r"] = pd.Series(cmp["ceiling_r"].values, index=out["truth_r"].index)
         dmg = cmp[[k for k in truth.WINDOW_DAMAGE_VARS if k in cmp]].to_dataframe()
         dmg["z"] = dmg["reconstruction_error_pct"] / dmg["seed_sum_std_pct"]
-        # the life band of results/comparison/summary.csv (lifecycle.summary_table)
-        sig = [lifecycle.band_sigma(lc, curve, stores.get("seed_cv")) for curve, _line in dmg.index]
-        dmg["band_sigma_pct"] = 100 * np.asarray(sig)
-        dmg["k_needed"] = np.abs(dmg["reconstruction_error_pct"]) / dmg["band_sigma_pct"]
+        # band_sigma_pct and coverage_needed: the life band on the window, as the comparison
+        # writes them (moorlife.truth; validation/band_calibration.py reads the same columns)
         out["window"] = dmg
         out["n_hours"] = int(cmp.attrs["n_hours"])
     return out
@@ -187,18 +185,6 @@ def load(results: Path, ms: str) -> dict[str, xr.Dataset] | None:
         "seed2": _open(results / ms / "truth_seed2.zarr"),
         "discrete_states": _open(results / "selection" / "discrete.zarr"),
         "discrete_sims": _open(results / ms / "discrete.zarr"),
-        "seed_cv": _seed_cv(results / "sensitivity" / "seeds.zarr"),
-    }
-
-
-def _seed_cv(path: Path) -> dict[str, float]:
-    """The seed CV of the compare stage (``moorlife.stages.compare``): the largest over lines."""
-    ds = _open(path)
-    if ds is None:
-        return {}
-    return {
-        c: float(np.max(np.std(ds[v].values, axis=0, ddof=1) / np.mean(ds[v].values, axis=0)))
-        for c, v in zip(("sn", "tn"), DAMAGE)
     }
 
 
@@ -269,7 +255,7 @@ def report(res: dict[tuple[str, str], dict[str, Any]], variants: list[str]) -> s
             w = m["window"]
             lines.append(
                 f"| {ms} | {v} | "
-                + " | ".join(f"{w.loc[k, 'band_sigma_pct']:.1f} (k {w.loc[k, 'k_needed']:.2f})" for k in keys)
+                + " | ".join(f"{w.loc[k, 'band_sigma_pct']:.1f} (k {w.loc[k, 'coverage_needed']:.2f})" for k in keys)
                 + " |"
             )
     return "\n".join(lines)
