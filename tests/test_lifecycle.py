@@ -537,6 +537,66 @@ def test_per_output_choice_takes_the_thrust_space_for_a_thrust_ridge_only():
         lifecycle.fit_outputs(x[tr], y[tr], cols, settings)
 
 
+def test_weighted_space_divides_each_scalar_span_by_its_weight():
+    x = np.array([[5.0, 10.0, 1.0, 6.0, 350.0], [25.0, 200.0, 7.0, 16.0, 20.0], [12.0, 90.0, 3.0, 9.0, 180.0]])
+    w = [2.0, 1.0, 0.5, 4.0, 3.0]  # the direction weights (1.0, 3.0) are ignored
+    x_w, mask, lo, span = lifecycle.space_inputs("weighted", x, None, None, weights=w)
+    np.testing.assert_array_equal(x_w, x)
+    np.testing.assert_array_equal(lo, [5.0, 0.0, 1.0, 6.0, 0.0])
+    np.testing.assert_array_equal(span, [10.0, 180.0, 12.0, 2.5, 180.0])  # training range / weight
+    _, _, lo_b, span_b = lifecycle.space_inputs("weighted", x, [0.0, 0, 0, 2, 0], [30.0, 180, 10, 20, 180], weights=w)
+    np.testing.assert_array_equal(lo_b, [0.0, 0, 0, 2, 0])
+    np.testing.assert_array_equal(span_b, [15.0, 180, 20, 5, 180])
+    np.testing.assert_array_equal(lifecycle.space_points("weighted", x), x)
+    with pytest.raises(ValueError, match="weights of lifecycle.rbf.weights"):
+        lifecycle.space_inputs("weighted", x, None, None)
+    with pytest.raises(ValueError, match="positive weights"):
+        lifecycle.space_inputs("weighted", x, None, None, weights=[1.0, 1.0, 0.0, 1.0, 1.0])
+
+
+def test_global_weighted_space_with_unit_weights_is_the_paper_fit():
+    hc = _hindcast(400, seed=32)
+    cases = _cases(hc, 60, 10, seed=33)
+    sims = _sims(cases)
+    cols = lifecycle.output_columns(sims, "case", lifecycle.DEFAULT_OUTPUTS)
+    x, y = lifecycle._points(cases, "case"), lifecycle.stack_outputs(sims, "case", cols)
+    lo, span = x.min(axis=0) - 1.0, np.ptp(x, axis=0) + 2.0
+    base = {"grid": {"n": 6}, "outputs": list(lifecycle.DEFAULT_OUTPUTS)}
+    paper = lifecycle.fit_outputs(x, y, cols, lifecycle.RBFSettings.from_config(base), lo=lo, span=span)
+    unit = {**base, "space": "weighted", "weights": {"wind_speed": 1.0, "hs": 1.0, "tp": 1.0}}
+    same = lifecycle.fit_outputs(x, y, cols, lifecycle.RBFSettings.from_config(unit), lo=lo, span=span)
+    at = x + 0.1
+    np.testing.assert_array_equal(lifecycle.predict_outputs(same, at), lifecycle.predict_outputs(paper, at))
+    assert same.spaces == ("weighted",) and set(same.input_space) == {"weighted"}
+    np.testing.assert_array_equal(same.centres, paper.centres)  # the error indicator's paper space
+    weighted = lifecycle.RBFSettings.from_config({**base, "space": "weighted"})
+    assert weighted.weights == (1.5, 1.0, 1.0, 0.7, 1.0)  # the schema's defaults, directions 1
+    other = lifecycle.fit_outputs(x, y, cols, weighted, lo=lo, span=span)
+    assert not np.array_equal(lifecycle.predict_outputs(other, at), lifecycle.predict_outputs(paper, at))
+    with pytest.raises(ValueError, match="space = 'weighted' with method 'gp'"):
+        lifecycle.RBFSettings.from_config({"method": "gp", "space": "weighted"})
+
+
+def test_per_output_choice_takes_the_weighted_space_for_a_wind_ridge_only():
+    """A damage sharp in the wind speed takes the space that weights it; one sharp in Hs does not."""
+    hc = _hindcast(3000, seed=34)
+    cases = _cases(hc, 150, 40, seed=35)
+    x = lifecycle._points(cases, "case")
+    w, _, hs, tp, _ = x.T
+    wind_ridge = 1e-6 * np.exp(-(((w - 12.0) / 1.5) ** 2)) * (1 + 0.05 * hs) + 1e-9
+    hs_ridge = 1e-6 * np.exp(-(((hs - 3.0) / 0.6) ** 2)) * (1 + 0.01 * w) + 1e-9
+    y = np.column_stack([wind_ridge, hs_ridge])
+    tr = cases["role"].values == "train"
+    cols = [("damage_sn", "M1"), ("damage_sn", "M2")]
+    cfg = {**PER_OUTPUT, "spaces": ["paper", "weighted"], "weights": {"wind_speed": 3.0, "hs": 1.0, "tp": 1.0}}
+    model = lifecycle.fit_outputs(x[tr], y[tr], cols, lifecycle.RBFSettings.from_config(cfg))
+    np.testing.assert_array_equal(model.input_space, ["weighted", "paper"])
+    paper = lifecycle.fit_outputs(x[tr], y[tr], cols, lifecycle.RBFSettings.from_config({**cfg, "spaces": ["paper"]}))
+    r = lifecycle.validation_metrics(lifecycle.predict_outputs(model, x[~tr]), y[~tr])["r"]
+    r_paper = lifecycle.validation_metrics(lifecycle.predict_outputs(paper, x[~tr]), y[~tr])["r"]
+    assert r[0] > r_paper[0] + 0.02 and r[1] == r_paper[1]
+
+
 def test_per_output_fit_does_not_depend_on_the_validation_states():
     """Perturbing the validation outputs changes the validation metrics and nothing else."""
     curve = _thrust_curve()

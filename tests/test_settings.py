@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from moorlife import fatigue, lifecycle, metocean, settings
+from moorlife import fatigue, lifecycle, metocean, names, settings
 from moorlife.config import ConfigError
 from moorlife.io import read_yaml
 from moorlife.mooring import lines
@@ -108,6 +108,8 @@ def test_records_build_from_empty_to_the_schema_defaults(cls, section):
         expected = _schema_default(section, key)
         if f.name == "smoothing":  # a number or a list of candidates, stored as a tuple
             expected = [expected] if not isinstance(expected, list) else expected
+        if f.name == "weights":  # a weight per scalar, stored per coordinate (1 on the directions)
+            expected = [expected.get(v, 1.0) for v in names.METOCEAN_VARS]
         expected = expected * SCALED.get((cls.__name__, f.name), 1) if isinstance(expected, float) else expected
         got = _plain(getattr(rec, f.name))
         assert (

@@ -169,10 +169,12 @@ SIM_OUTPUT_ATTRS: dict[str, dict[str, str]] = {**SIM_ATTRS, **SIM_EXTRA_ATTRS, *
 
 
 #: Candidate input spaces of the RBF reconstruction (``moorlife.lifecycle.spaces``): the paper's
-#: normalised 5-D space, and the same plus the rotor thrust T(W) at the hub wind speed.
+#: normalised 5-D space, the same plus the rotor thrust T(W) at the hub wind speed, and the 5-D
+#: space with a weight on each scalar coordinate (``lifecycle.rbf.weights``).
 RBF_SPACE_PAPER = "paper"
 RBF_SPACE_THRUST = "thrust"
-RBF_SPACES: tuple[str, ...] = (RBF_SPACE_PAPER, RBF_SPACE_THRUST)
+RBF_SPACE_WEIGHTED = "weighted"
+RBF_SPACES: tuple[str, ...] = (RBF_SPACE_PAPER, RBF_SPACE_THRUST, RBF_SPACE_WEIGHTED)
 #: Transforms of a rebuilt output: interpolated as is, or as log10 and back-transformed.
 RBF_TRANSFORMS: tuple[str, ...] = ("linear", "log10")
 #: The reconstruction's choice per output in ``lifecycle.zarr`` (dim ``output``), and the root
@@ -182,7 +184,10 @@ RBF_TRANSFORM = "transform"
 RBF_LOG_FACTOR = "retransform_factor"
 RBF_LOO_RMSE_UNITS = "loo_rmse_units"
 RBF_CHOICE_ATTRS: dict[str, dict[str, str]] = {
-    RBF_INPUT_SPACE: {"units": "1", "long_name": "RBF input space (paper: 5-D; thrust: 5-D + T(W))"},
+    RBF_INPUT_SPACE: {
+        "units": "1",
+        "long_name": "RBF input space (paper: 5-D; thrust: + T(W); weighted: scalars weighted)",
+    },
     RBF_TRANSFORM: {"units": "1", "long_name": "RBF transform of the output (linear or log10)"},
     RBF_LOG_FACTOR: {"units": "1", "long_name": "back-transform factor c of a log10 output (c 10**f; 1: none)"},
     RBF_LOO_RMSE_UNITS: {"units": "1", "long_name": "leave-one-out RMSE in the output's units (training states)"},

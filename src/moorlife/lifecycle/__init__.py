@@ -72,7 +72,7 @@ from moorlife.lifecycle.sensitivity import (
     seed_lives,
 )
 from moorlife.lifecycle.settings import GPBounds, GPSettings, RBFSettings, rbf_settings
-from moorlife.lifecycle.spaces import ThrustCurve, space_inputs, thrust_at, thrust_curve
+from moorlife.lifecycle.spaces import ThrustCurve, space_inputs, space_points, thrust_at, thrust_curve
 from moorlife.lifecycle.uncertainty import (
     band_sigma_of,
     calibrate_coverage,
@@ -102,6 +102,7 @@ __all__ = [
     "thrust_curve",
     "thrust_at",
     "space_inputs",
+    "space_points",
     "life_damage",
     "damage_per_year",
     "design_check",

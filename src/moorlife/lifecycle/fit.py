@@ -3,7 +3,8 @@
 Two ways to choose each output's interpolant (``lifecycle.rbf.choose``):
 
 ``global`` (the default, the paper's method)
-    Every output in the paper's normalised 5-D space; the damage interpolated as ``log10``
+    Every output in one input space (``lifecycle.rbf.space``; the paper's normalised 5-D space
+    by default, :mod:`moorlife.lifecycle.spaces`); the damage interpolated as ``log10``
     when ``log_damage``; ``q0`` (and the smoothing) per output by Rippa's leave-one-out error
     in the interpolated (transformed) values.
 ``per_output``
@@ -38,8 +39,8 @@ import numpy.typing as npt
 from moorlife import gp, names, rbf
 from moorlife.lifecycle.outputs import _label
 from moorlife.lifecycle.settings import RBFSettings
-from moorlife.lifecycle.spaces import ThrustCurve, space_inputs
-from moorlife.space import Space, direction_mask, embed, fit_space
+from moorlife.lifecycle.spaces import ThrustCurve, space_inputs, space_points
+from moorlife.space import Space, embed, fit_space
 
 __all__ = ["Reconstruction", "validation_metrics", "fit_outputs", "predict_outputs", "loo_errors_in_units"]
 
@@ -189,23 +190,33 @@ def fit_outputs(
         values = values.copy()
         for j in np.flatnonzero(logs):
             values[:, j] = _floored(values[:, j], cols[j])
-    mask = direction_mask()
+    x, mask, lo_s, span_s = space_inputs(settings.space, points, lo, span, thrust, settings.weights)
     common = dict(
         is_direction=mask,
         log_output=logs,
         smoothing=settings.smoothing,
-        lo=lo,
-        span=span,
+        lo=lo_s,
+        span=span_s,
         retransform=settings.retransform,
     )
     if settings.shape_mode == "fixed":
-        model = rbf.fit_rbf(points, values, shape=_fixed_shapes(cols, settings), **common)
+        model = rbf.fit_rbf(x, values, shape=_fixed_shapes(cols, settings), **common)
     else:
         grid = rbf.shape_grid(settings.grid_min, settings.grid_max, settings.grid_n)
-        model = rbf.fit_rbf(points, values, shapes=grid, share_tol=settings.share_tol, **common)
+        model = rbf.fit_rbf(x, values, shapes=grid, share_tol=settings.share_tol, **common)
     rmse = _rmse_units(values, model.loo_error, logs, model.log_factor)
-    paper = [names.RBF_SPACE_PAPER]
-    return _combine([model], [np.arange(len(cols))], paper, thrust, model.space, model.centres, "global", rmse)
+    if settings.space == names.RBF_SPACE_PAPER:
+        space, centres = model.space, model.centres
+    else:
+        space, centres = _paper_space(points, lo, span)
+    return _combine([model], [np.arange(len(cols))], [settings.space], thrust, space, centres, "global", rmse)
+
+
+def _paper_space(points: np.ndarray, lo: npt.ArrayLike | None, span: npt.ArrayLike | None) -> tuple[Space, np.ndarray]:
+    """The paper's 5-D normalisation of the training states, and the states in it."""
+    x5, mask5, lo5, span5 = space_inputs(names.RBF_SPACE_PAPER, points, lo, span)
+    space = fit_space(x5, mask5, lo=lo5, span=span5)
+    return space, embed(x5, space)
 
 
 def predict_outputs(model: Reconstruction, points: npt.ArrayLike, *, chunk_rows: int = 8192) -> np.ndarray:
@@ -225,14 +236,14 @@ def predict_outputs(model: Reconstruction, points: npt.ArrayLike, *, chunk_rows:
         Back-transformed (with the correction) for ``log10`` outputs.
     """
     if model.method == "gp":
-        x = space_inputs(model.spaces[0], np.asarray(points, dtype=float), None, None, model.thrust)[0]
+        x = space_points(model.spaces[0], points, model.thrust)
         return gp.predict_gp(model.models[0], x, chunk_rows=chunk_rows)
     if len(model.models) == 1 and model.spaces[0] == names.RBF_SPACE_PAPER:
         return rbf.predict_rbf(model.models[0], points, chunk_rows=chunk_rows)
     x = np.asarray(points, dtype=float)
     out = np.empty((x.shape[0], model.n_outputs))
     for m, cols, name in zip(model.models, model.columns, model.spaces):
-        out[:, cols] = rbf.predict_rbf(m, space_inputs(name, x, None, None, model.thrust)[0], chunk_rows=chunk_rows)
+        out[:, cols] = rbf.predict_rbf(m, space_points(name, x, model.thrust), chunk_rows=chunk_rows)
     return out
 
 
@@ -380,7 +391,7 @@ def _fit_per_output(
         y_log[:, j] = _floored(y[:, j])
     ly = np.full_like(y, np.nan)
     ly[:, log_ok] = np.log10(y_log[:, log_ok])
-    inputs = [space_inputs(sp, points, lo, span, thrust) for sp in settings.spaces]
+    inputs = [space_inputs(sp, points, lo, span, thrust, settings.weights) for sp in settings.spaces]
     geometry = [rbf.centre_geometry(x, mask, lo=lo_s, span=span_s) for x, mask, lo_s, span_s in inputs]
     if settings.shape_mode == "fixed":
         shapes = _fixed_shapes(cols, settings)[:, None]
@@ -420,9 +431,8 @@ def _fit_per_output(
         )
         columns.append(c)
         used.append(settings.spaces[int(si)])
-    x5, mask5, lo5, span5 = space_inputs(names.RBF_SPACE_PAPER, points, lo, span)
-    space = fit_space(x5, mask5, lo=lo5, span=span5)
-    return _combine(models, columns, used, thrust, space, embed(x5, space), "per_output", choice.loo_rmse)
+    space, centres = _paper_space(points, lo, span)
+    return _combine(models, columns, used, thrust, space, centres, "per_output", choice.loo_rmse)
 
 
 def _fit_gp(
@@ -469,15 +479,14 @@ def _fit_gp(
         else:
             factor = model.log_factor[logs]
         e[:, logs] = y[:, logs] - factor * 10.0 ** (ly - model.loo_error[:, logs])
-    x5, mask5, lo5, span5 = space_inputs(names.RBF_SPACE_PAPER, points, lo, span)
-    space = fit_space(x5, mask5, lo=lo5, span=span5)
+    space, centres = _paper_space(points, lo, span)
     return Reconstruction(
         models=(model,),
         columns=(np.arange(len(cols), dtype=np.int64),),
         spaces=(name,),
         thrust=thrust,
         space=space,
-        centres=embed(x5, space),
+        centres=centres,
         choose="global",
         input_space=np.full(len(cols), name),
         shape=np.full(len(cols), np.nan),

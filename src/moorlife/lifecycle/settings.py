@@ -6,6 +6,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from moorlife import names
 from moorlife.settings import fill_section
 
 __all__ = ["GPBounds", "GPSettings", "RBFSettings", "rbf_settings"]
@@ -106,8 +107,13 @@ class RBFSettings:
         ``global``: the paper's 5-D space for every output, damage by ``log_damage``;
         ``per_output``: space, transform, ``q0`` and smoothing per output by the leave-one-out
         error in the output's units (:func:`moorlife.rbf.choose_per_output`).
+    space : str
+        Input space of ``global`` (``names.RBF_SPACES``; ``"paper"``: the paper's method).
     spaces : tuple of str
         Candidate input spaces of ``per_output`` (``names.RBF_SPACES``).
+    weights : tuple of float
+        Weight of each coordinate of the ``"weighted"`` space, ``names.METOCEAN_VARS`` order
+        (1 on the directions).
     transforms, damage_transforms : tuple of str
         Candidate transforms of ``per_output`` (``names.RBF_TRANSFORMS``) of the outputs other
         than the damage, and of the damage.
@@ -132,7 +138,9 @@ class RBFSettings:
     log_damage: bool
     smoothing: tuple[float, ...]
     choose: str
+    space: str
     spaces: tuple[str, ...]
+    weights: tuple[float, ...]
     transforms: tuple[str, ...]
     damage_transforms: tuple[str, ...]
     retransform: str
@@ -168,7 +176,9 @@ class RBFSettings:
             log_damage=bool(s["log_damage"]),
             smoothing=_smoothing(s["smoothing"], source),
             choose=str(s["choose"]),
+            space=str(s["space"]),
             spaces=tuple(str(v) for v in s["spaces"]),
+            weights=tuple(1.0 if v in names.DIRECTION_VARS else float(s["weights"][v]) for v in names.METOCEAN_VARS),
             transforms=tuple(str(v) for v in s["transforms"]),
             damage_transforms=tuple(str(v) for v in s["damage_transforms"]),
             retransform=str(s["retransform"]),
@@ -177,6 +187,10 @@ class RBFSettings:
             method=str(s["method"]),
             gp=GPSettings.from_section(s["gp"], source),
         )
+        if out.method == "gp" and out.space != names.RBF_SPACE_PAPER:
+            raise ValueError(
+                f"{source}: lifecycle.rbf.space = {out.space!r} with method 'gp'; the GP's space is set by gp.thrust"
+            )
         if out.method == "gp" and out.choose != "global":
             raise ValueError(f"{source}: lifecycle.rbf.method = 'gp' needs choose = 'global', got {out.choose!r}")
         if not 0 < out.grid_min < out.grid_max:

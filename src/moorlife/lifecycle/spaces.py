@@ -1,4 +1,4 @@
-"""The candidate input spaces of the reconstruction: the paper's 5-D space, and the same with the thrust.
+"""The candidate input spaces of the reconstruction: the paper's 5-D space, with the thrust, or weighted.
 
 ``"paper"``
     The normalised 5-D sea-state space of the selection (:mod:`moorlife.space`): wind speed
@@ -13,6 +13,12 @@
     used). The damage of the lines away from the waves peaks in a narrow band of wind speed
     just above rated, narrower than any useful shape parameter in ``W``; in ``T(W)`` that band
     is the maximum of one coordinate.
+``"weighted"``
+    The paper's 5-D space with each scalar coordinate (wind speed, Hs, Tp) multiplied by a
+    weight (``lifecycle.rbf.weights``): ``w (x - lo) / span``, i.e. the span divided by the
+    weight; directions as in the paper space. A weight above 1 shortens the RBF's length
+    scale along that coordinate: the anisotropic metric that the damage's fast variation with
+    wind speed asks for (``validation/reconstruction.md`` section 8).
 """
 
 from __future__ import annotations
@@ -24,9 +30,9 @@ import numpy as np
 import numpy.typing as npt
 
 from moorlife import names, turbine
-from moorlife.space import direction_mask
+from moorlife.space import direction_mask, scaling_from
 
-__all__ = ["ThrustCurve", "thrust_curve", "thrust_at", "space_inputs"]
+__all__ = ["ThrustCurve", "thrust_curve", "thrust_at", "space_inputs", "space_points"]
 
 #: Wind-speed step (m/s) of the scan that finds the thrust range of a wind range.
 _SCAN_STEP = 0.01
@@ -108,24 +114,39 @@ def _thrust_range(curve: ThrustCurve, w_lo: float, w_hi: float) -> tuple[float, 
     return lo, span if span > 0 else 1.0
 
 
+def space_points(name: str, points: npt.ArrayLike, curve: ThrustCurve | None = None) -> np.ndarray:
+    """The coordinates of sea states ``points`` (n, 5) in the space ``name``, physical units.
+
+    What a fitted model in that space is evaluated at (its normalisation, weights included, is
+    the model's own): the points themselves, or with the thrust ``T(W)`` as a sixth column.
+    """
+    if name == names.RBF_SPACE_WEIGHTED:
+        return np.asarray(points, dtype=float)
+    return space_inputs(name, points, None, None, curve)[0]
+
+
 def space_inputs(
     name: str,
     points: npt.ArrayLike,
     lo: npt.ArrayLike | None,
     span: npt.ArrayLike | None,
     curve: ThrustCurve | None = None,
+    weights: npt.ArrayLike | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray | None]:
     """The inputs of an RBF in the candidate space ``name``.
 
     Parameters
     ----------
-    name : {"paper", "thrust"}
+    name : {"paper", "thrust", "weighted"}
     points : array_like, shape (n, 5)
         Sea states in ``names.METOCEAN_VARS`` order (physical units).
     lo, span : array_like (5,) or None
         The normalisation of the paper space (None: the fit's training points).
     curve : ThrustCurve, optional
         Required for ``"thrust"``.
+    weights : array_like, shape (5,), optional
+        Required for ``"weighted"``: the weight of each coordinate in ``names.METOCEAN_VARS``
+        order (positive; those of the directions are ignored).
 
     Returns
     -------
@@ -133,17 +154,29 @@ def space_inputs(
     is_direction : numpy.ndarray of bool
     lo, span : numpy.ndarray or None
         The normalisation extended by the thrust's (None if the 5-D one is None, so that the
-        fit normalises every coordinate by the training range).
+        fit normalises every coordinate by the training range). ``"weighted"``: always given,
+        the spans (by default the training range of ``points``) divided by the weights.
 
     Raises
     ------
     ValueError
-        On an unknown space, or ``"thrust"`` without a curve.
+        On an unknown space, ``"thrust"`` without a curve, or ``"weighted"`` without positive
+        weights.
     """
     x = np.asarray(points, dtype=float)
     mask = direction_mask()
     if name == names.RBF_SPACE_PAPER:
         return x, mask, None if lo is None else np.asarray(lo, float), None if span is None else np.asarray(span, float)
+    if name == names.RBF_SPACE_WEIGHTED:
+        if weights is None:
+            raise ValueError("the 'weighted' input space needs the weights of lifecycle.rbf.weights")
+        w = np.asarray(weights, dtype=float)
+        if w.shape != mask.shape or not np.all(np.isfinite(w) & (w > 0)):
+            raise ValueError(f"the 'weighted' space needs {mask.size} positive weights, got {w.tolist()}")
+        lo_d, span_d = scaling_from(x, mask)
+        lo_w = lo_d if lo is None else np.asarray(lo, float).copy()
+        span_w = (span_d if span is None else np.asarray(span, float)) / np.where(mask, 1.0, w)
+        return x, mask, lo_w, span_w
     if name != names.RBF_SPACE_THRUST:
         raise ValueError(f"unknown RBF input space {name!r}; expected one of {list(names.RBF_SPACES)}")
     if curve is None:

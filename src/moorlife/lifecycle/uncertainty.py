@@ -6,7 +6,7 @@ import numpy as np
 import numpy.typing as npt
 
 from moorlife import gp, rbf
-from moorlife.lifecycle.spaces import space_inputs
+from moorlife.lifecycle.spaces import space_points
 
 __all__ = [
     "error_indicator",
@@ -69,7 +69,7 @@ def error_indicator(
     s = np.asarray(scale, dtype=float)
     s = np.where(s > 0, s, 1.0)
     if getattr(model, "indicator", "loo") == "sd":
-        x = space_inputs(model.spaces[0], np.asarray(points, dtype=float), None, None, model.thrust)[0]
+        x = space_points(model.spaces[0], points, model.thrust)
         _, var = gp.predict_latent(model.models[0], x, variance_of=np.ones(s.size, bool))
         return np.max(np.sqrt(var) / s, axis=1), dist
     typical = _typical_spacing(model)

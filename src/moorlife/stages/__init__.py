@@ -126,16 +126,18 @@ def thrust_for(settings: Any, platform_cfg: str | os.PathLike[str] | None) -> An
     """The thrust curve of ``config/platform.yaml`` when the RBF fit may use the thrust space.
 
     ``settings`` is a :class:`moorlife.lifecycle.RBFSettings`; None unless ``choose`` is
-    ``per_output`` with ``"thrust"`` among its ``spaces``, or ``method`` is ``gp`` with
-    ``gp.thrust`` (the lifecycle and rounds stages).
+    ``per_output`` with ``"thrust"`` among its ``spaces``, ``global`` with ``space`` ``"thrust"``,
+    or ``method`` is ``gp`` with ``gp.thrust`` (the lifecycle and rounds stages).
     """
     from moorlife import lifecycle, names
     from moorlife.io.platform import read_platform_config
 
     gp_thrust = settings.method == "gp" and settings.gp.thrust
-    if not gp_thrust and (settings.choose != "per_output" or names.RBF_SPACE_THRUST not in settings.spaces):
+    per_output = settings.choose == "per_output"
+    candidates = settings.spaces if per_output else (settings.space,)
+    if not gp_thrust and names.RBF_SPACE_THRUST not in candidates:
         return None
     if platform_cfg is None:
-        key = "gp.thrust is true" if gp_thrust else "spaces has 'thrust'"
+        key = "gp.thrust is true" if gp_thrust else ("spaces has" if per_output else "space is") + " 'thrust'"
         raise ValueError(f"lifecycle.rbf.{key}: the stage needs platform_cfg (config/platform.yaml)")
     return lifecycle.thrust_curve(read_platform_config(platform_cfg), str(platform_cfg))
