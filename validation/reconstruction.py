@@ -162,9 +162,12 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
             seed2=stores.get("seed2"),
         )
         out["truth_r"] = pd.Series(cmp["r"].values, index=cmp["output"].values.astype(object).astype(str))
-        out["noise_r"] = pd.Series(cmp["noise_r"].values, index=out["truth_r"].index)
-        out["ceiling_r"] = pd.Series(cmp["ceiling_r"].values, index=out["truth_r"].index)
+        for k in ("noise_r", "ceiling_r"):  # from the second seed (truth_seed2.zarr), when it exists
+            nan = np.full(cmp["r"].shape, np.nan)
+            out[k] = pd.Series(cmp[k].values if k in cmp else nan, index=out["truth_r"].index)
         dmg = cmp[[k for k in truth.WINDOW_DAMAGE_VARS if k in cmp]].to_dataframe()
+        if "seed_sum_std_pct" not in dmg:  # no second seed: no seed scatter, no z
+            dmg["seed_sum_std_pct"] = np.nan
         dmg["z"] = dmg["reconstruction_error_pct"] / dmg["seed_sum_std_pct"]
         # band_sigma_pct and coverage_needed: the life band on the window, as the comparison
         # writes them (moorlife.truth; validation/band_calibration.py reads the same columns)
