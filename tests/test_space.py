@@ -125,6 +125,7 @@ def test_fit_space_and_embed_are_the_selection_normalisation():
 
 def test_selection_and_rbf_use_the_shared_space():
     from moorlife.lifecycle import fit as lc_fit
+    from moorlife.lifecycle import spaces as lc_spaces
     from moorlife.rbf import fit as rbf_fit
     from moorlife.rbf import predict as rbf_predict
     from moorlife.selection import adapters as sel_adapters
@@ -144,7 +145,8 @@ def test_selection_and_rbf_use_the_shared_space():
     assert rbf_fit.fit_space is space.fit_space and rbf_fit.embed is space.embed
     assert rbf_predict.sq_dist_block is space.sq_dist_block
     assert rbf_predict.nearest_block is space.nearest_block
-    assert lc_fit.direction_mask is space.direction_mask
+    assert lc_fit.fit_space is space.fit_space and lc_fit.embed is space.embed
+    assert lc_spaces.direction_mask is space.direction_mask and lc_spaces.scaling_from is space.scaling_from
     # no second implementation of the embedding or the distance anywhere else in the package
     defs = re.compile(r"^def (normalise|scaling_from|fit_space|embed|pairwise_distance|squared_distances)\(", re.M)
     others = [
