@@ -59,6 +59,11 @@ VARIANTS = {
     "eq200": ("equilibrium", 200.0),
     "eq100": ("equilibrium", 100.0),
     "ref": ("equilibrium", 1800.0),
+    "steady200": ("steady", 200.0),
+    "steady100": ("steady", 100.0),
+    "steady300": ("steady", 300.0),
+    "eq300": ("equilibrium", 300.0),
+    "eq400": ("equilibrium", 400.0),
 }
 CONTROL = {"rest200": ("rest", 200.0)}
 BIAS_LIMIT, RMS_LIMIT = 0.1, 0.25
@@ -134,7 +139,11 @@ def run_variants(model, sea, ids, ms, seed, cfg, variants) -> dict[str, dict[str
                 if not np.array_equal(getattr(ref, field), getattr(f, field)):
                     raise AssertionError(f"window_forcing differs from the record's forcing in {field}")
             continue
-        st = sim.equilibrium_start(model, f) if start == "equilibrium" else None
+        if start == "steady":  # the linear periodic steady state of the whole period, at the start's step
+            first = int(round((600.0 - lead) / settings.dt))
+            st = sim.steady_start(model, periodic, periodic.grid.n_fft, first=first)
+        else:
+            st = sim.equilibrium_start(model, f) if start == "equilibrium" else None
         rec = sim.integrate(model, f, transient=lead, start=st)
         out[name] = sim.summarise(
             rec,

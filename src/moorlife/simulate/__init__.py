@@ -28,10 +28,12 @@ Design notes
 * Loads use linearised kinematics (small rotations): strip and hub velocities are
   ``v + omega x p`` with the body-frame position ``p``; the fairleads use the exact rotation.
 * Wave kinematics for drag are evaluated at the strips' mean positions (first order).
-* Every record starts at rest at its mean equilibrium (``simulation.start``,
-  :mod:`~moorlife.simulate.initial`): the static offset under its mean thrust and mean drift,
-  the lines in their static shape there, the filters at their steady states. The kept record
-  starts after ``transient``; statistics use only the kept part.
+* Every record starts as ``simulation.start`` says: at the linear periodic steady state of its
+  own forcing (``steady``, :mod:`~moorlife.simulate.steady`), at rest at its mean equilibrium
+  (``equilibrium``, :mod:`~moorlife.simulate.initial`: the static offset under its mean thrust
+  and mean drift, the lines in their static shape there, the filters at their steady states), or
+  at rest at the trimmed origin (``rest``). The kept record starts after ``transient``;
+  statistics use only the kept part.
 * A batch is bit-identical to its cases run alone: every random stream comes from
   ``case_rng(seed, mooring_system, case_id)`` and the kernel treats cases independently.
 
@@ -39,6 +41,7 @@ Modules, one concept each (this package re-exports their public API):
 :mod:`~moorlife.simulate.model` (the model inputs), :mod:`~moorlife.simulate.forcing` (waves,
 drag kinematics and wind on the integration grid), :mod:`~moorlife.simulate.kernel` (the Numba
 kernels), :mod:`~moorlife.simulate.initial` (the start of a record: the mean equilibrium),
+:mod:`~moorlife.simulate.steady` (the start at the linear periodic steady state),
 :mod:`~moorlife.simulate.integration` (the step loop, :func:`integrate`),
 :mod:`~moorlife.simulate.linear` (linear analysis, verification), :mod:`~moorlife.simulate.summary`
 (statistics of a record), :mod:`~moorlife.simulate.batch` (one batch of sea states) and
@@ -76,6 +79,7 @@ from moorlife.simulate.prepare import (  # noqa: F401 - _strips_from_members: be
     prepare_model,
     static_equilibrium,
 )
+from moorlife.simulate.steady import steady_start
 from moorlife.simulate.summary import (
     EXTRA_ATTRS,
     EXTRA_LINE_VARS,
@@ -108,6 +112,7 @@ __all__ = [
     "static_offsets",
     "mean_equilibrium",
     "equilibrium_start",
+    "steady_start",
     "integrate",
     "summarise",
     "simulate_batch",

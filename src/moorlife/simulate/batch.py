@@ -14,6 +14,7 @@ from moorlife.simulate.forcing import Forcing, build_forcing
 from moorlife.simulate.initial import equilibrium_start
 from moorlife.simulate.integration import integrate
 from moorlife.simulate.model import ModelInputs
+from moorlife.simulate.steady import steady_start
 from moorlife.simulate.summary import summarise
 
 __all__ = ["simulate_batch", "batch_forcing"]
@@ -48,6 +49,25 @@ def _check_cases(cases: Mapping[str, np.ndarray], case_ids: np.ndarray) -> dict[
             i = int(np.flatnonzero(bad)[0])
             raise ValueError(f"simulate_batch: case {case_ids[i]}: {k} = {float(v[i])!r} is invalid")
     return arr
+
+
+def period_grid(grid: env.RecordGrid) -> env.RecordGrid:
+    """The grid of one whole period of ``grid``'s synthesis (``n_steps = n_fft - 1``)."""
+    return env.RecordGrid(dt=grid.dt, n_steps=grid.n_fft - 1, n_fft=grid.n_fft, d_omega=grid.d_omega)
+
+
+def record_part(forcing: Forcing, grid: env.RecordGrid) -> Forcing:
+    """The first ``grid.n_steps`` steps of a longer forcing on the same FFT grid (bit for bit the
+    forcing :func:`batch_forcing` gives on ``grid`` itself)."""
+    n, ke = grid.n_steps, forcing.kin_every
+    return Forcing(
+        grid=grid,
+        force=np.ascontiguousarray(forcing.force[:, : n + 1]),
+        wind=np.ascontiguousarray(forcing.wind[:, : n + 1]),
+        wind_dir=forcing.wind_dir,
+        kin_every=ke,
+        kinematics=np.ascontiguousarray(forcing.kinematics[:, : n // ke + 2]),
+    )
 
 
 def batch_forcing(
@@ -139,11 +159,20 @@ def simulate_batch(
     sea = _check_cases(cases, ids)
     s = _sim_settings(sim_cfg)
     model = model_inputs
+    record_grid = env.record_grid(s.duration, s.transient, s.dt)
+    # simulation.start 'steady' needs the whole period of the synthesis; the record is its start
+    grid = period_grid(record_grid) if s.start == "steady" else record_grid
     forcing = batch_forcing(
-        sea, case_ids=ids, mooring_system=mooring_system, seed=seed, model=model, settings=s, stream=stream
+        sea, case_ids=ids, mooring_system=mooring_system, seed=seed, model=model, settings=s, stream=stream, grid=grid
     )
-    # simulation.start: every record at its mean equilibrium, or at rest at the trimmed origin
-    start = equilibrium_start(model, forcing) if s.start == "equilibrium" else None
+    # simulation.start: at the linear periodic steady state, at rest at the mean equilibrium, or
+    # at rest at the trimmed origin
+    start = None
+    if s.start == "steady":
+        start = steady_start(model, forcing, record_grid.n_fft)
+        forcing = record_part(forcing, record_grid)
+    elif s.start == "equilibrium":
+        start = equilibrium_start(model, forcing)
     record = integrate(model, forcing, transient=s.transient, start=start)
     bad = ~np.isfinite(record.motion).all(axis=(1, 2))
     if model.mooring_kind != "linear":

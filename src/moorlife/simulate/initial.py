@@ -59,12 +59,16 @@ class InitialState(NamedTuple):
         starts at zero: the body at rest before ``t = 0``).
     filter : (B, nf)
         States of the rotor's pitch-band filter.
+    history : (B, 6, m), optional
+        Platform velocity of the ``m`` steps before ``t = 0``, oldest first, for the radiation
+        convolution (None: at rest before ``t = 0``; :func:`moorlife.simulate.steady_start`).
     """
 
     displacement: np.ndarray
     velocity: np.ndarray
     radiation: np.ndarray
     filter: np.ndarray
+    history: np.ndarray | None = None
 
 
 class Equilibrium(NamedTuple):

@@ -130,6 +130,21 @@ def _kernel_at(model: ModelInputs, dt: float) -> tuple[np.ndarray, int, np.ndarr
     )
 
 
+def _fill_history(hist: np.ndarray, past: np.ndarray, nb: int) -> None:
+    """Put the velocities of the steps before ``t = 0`` (``past (B, 6, m)``, oldest first) into the
+    convolution's ring buffer ``hist (stride, 6, 2 nlag, B)`` where :func:`_convolve` reads them."""
+    stride, _, two_nlag, _ = hist.shape
+    nlag = two_nlag // 2
+    m = past.shape[2]
+    if past.shape[:2] != (nb, 6) or m < stride * (nlag - 1):
+        raise ValueError(f"integrate: the start's history must be ({nb}, 6, >= {stride * (nlag - 1)})")
+    for k in range(m):
+        j = k - m  # the step, before t = 0
+        c, slot = j % stride, (j // stride) % nlag
+        hist[c, :, slot, :] = past[:, :, k].T
+        hist[c, :, slot + nlag, :] = past[:, :, k].T
+
+
 @dataclass(frozen=True)
 class Record:
     """Kept part of a simulated record (after the transient).
@@ -208,7 +223,7 @@ def integrate(
     if start.radiation.shape != (nb, nr) or start.filter.shape != (nb, nf):
         raise ValueError(f"integrate: the start's radiation and filter states must be ({nb}, {nr}) and ({nb}, {nf})")
     # the kernels update the state in place: copies, so that the caller's start stays as given
-    q, v, xr, zf = (np.array(a, dtype=float) for a in start)
+    q, v, xr, zf = (np.array(a, dtype=float) for a in start[:4])
     ra = _csr(model.rad_a)
     free = _free_dofs(locked)
     held = np.setdiff1d(np.arange(6), free)
@@ -236,6 +251,8 @@ def integrate(
     coupled = not linear
     ker, stride, kpi, kpj = _kernel_at(model, dt)
     hist = np.zeros((stride, 6, 2 * ker.shape[1], nb))
+    if start.history is not None and ker.shape[1]:
+        _fill_history(hist, np.asarray(start.history, dtype=float), nb)
     static = np.asarray(model.static_load, dtype=float)
     state = State(
         displacement=q,

@@ -1,0 +1,253 @@
+"""The start of a record at its linear periodic steady state (``simulation.start: steady``).
+
+The mean-equilibrium start (:mod:`moorlife.simulate.initial`) puts the platform where its record
+oscillates about, but at rest: the lightly damped slow-drift surge and sway then need several
+hundred seconds to build up to their stationary amplitude (``validation/transient.md``). The
+synthesised forcing is periodic with its FFT period, so the steady state of a *linearised* model
+under that same forcing is known at every instant, by FFT. :func:`steady_start` starts each record
+there: platform displacement and velocity, the radiation convolution's velocity history (or the
+state-space states), and the rotor filter, all at the linear periodic response at ``t = 0``.
+
+The linear model about the mean equilibrium (:func:`~moorlife.simulate.initial.mean_equilibrium`):
+
+* restoring: hydrostatics plus the quasi-static catenary's stiffness at the mean offset
+  (finite differences, as the static solve);
+* inertia and radiation: ``M + A_inf`` and the model's own radiation memory (its impedance);
+* Morison drag: stochastic linearisation about the record's own wave kinematics,
+  ``B = sum_s J_s^T E[df/du] J_s`` with the time mean over the record, and the drag force of the
+  undisturbed kinematics as a load (its difference-frequency part drives the slow drift too);
+* rotor: the thrust of the filtered undisturbed wind as a load, and the aerodynamic damping
+  ``E[T'] G(omega) e e^T`` of the pitch-band filter ``G`` on the relative wind;
+* the model's extra linear damping. The lines' own drag is not in it (they start in their
+  static shape, as before).
+
+Only the start changes; the integration that follows is the full nonlinear model.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from moorlife.simulate.forcing import Forcing
+from moorlife.simulate.initial import (
+    InitialState,
+    _residual_and_jacobian,
+    _static_lines,
+    mean_equilibrium,
+    mean_load,
+)
+from moorlife.simulate.integration import _kernel_at
+from moorlife.simulate.linear import radiation_impedance
+from moorlife.simulate.model import ModelInputs
+
+__all__ = ["drag_linearisation", "linear_stiffness", "periodic_response", "steady_start"]
+
+#: Frequencies above this (rad/s) carry no response worth solving for (the platform's RAOs are
+#: negligible there and the forcing spectra have no energy).
+OMEGA_MAX = 4.0
+
+
+def _strip_jacobians(model: ModelInputs) -> np.ndarray:
+    """``(ns, 3, 6)``: strip velocity ``v + omega x p`` from the platform velocity (small angles)."""
+    p = np.asarray(model.strip_pos, dtype=float)
+    ns = p.shape[0]
+    j = np.zeros((ns, 3, 6))
+    j[:, 0, 0] = j[:, 1, 1] = j[:, 2, 2] = 1.0
+    # omega x p = -p x omega = -[p]_x omega
+    j[:, 0, 4], j[:, 0, 5] = p[:, 2], -p[:, 1]
+    j[:, 1, 3], j[:, 1, 5] = -p[:, 2], p[:, 0]
+    j[:, 2, 3], j[:, 2, 4] = p[:, 1], -p[:, 0]
+    return j
+
+
+def _strip_forces(model: ModelInputs, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Morison drag of the undisturbed kinematics ``u (nk, 3, ns)``: load ``(nk, 6)`` and ``E[df/du] (ns, 3, 3)``."""
+    a = np.asarray(model.strip_axis, dtype=float)  # (ns, 3)
+    cn = np.asarray(model.strip_cdn, dtype=float)
+    ca = np.asarray(model.strip_cda, dtype=float)
+    ua = np.einsum("kcs,sc->ks", u, a)  # axial component (nk, ns)
+    un = u - ua[:, None, :] * a.T[None]  # normal part (nk, 3, ns)
+    mag = np.sqrt(np.einsum("kcs,kcs->ks", un, un))
+    f = cn[None, None, :] * mag[:, None, :] * un + (ca * np.abs(ua) * ua)[:, None, :] * a.T[None]
+    jac = _strip_jacobians(model)
+    load = np.einsum("kcs,scd->kd", f, jac)  # generalised force, J^T f
+    proj = np.eye(3)[None] - a[:, :, None] * a[:, None, :]  # (ns, 3, 3)
+    safe = np.where(mag > 0.0, mag, 1.0)
+    outer = np.einsum("kcs,kes->sce", un / safe[:, None, :], un) / u.shape[0]  # E[u_n u_n^T / |u_n|]
+    dfdu = cn[:, None, None] * (mag.mean(axis=0)[:, None, None] * proj + outer)
+    dfdu += (2.0 * ca * np.abs(ua).mean(axis=0))[:, None, None] * (a[:, :, None] * a[:, None, :])
+    return load, dfdu
+
+
+def drag_linearisation(model: ModelInputs, kinematics: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Stochastic linearisation of the strips' Morison drag about one record's wave kinematics.
+
+    Parameters
+    ----------
+    model : ModelInputs
+    kinematics : (nk, 3, ns)
+        Undisturbed wave particle velocity at the strips over one period, m/s.
+
+    Returns
+    -------
+    load : (nk, 6)
+        Drag load of the undisturbed kinematics on the platform at rest, N and N m.
+    damping : (6, 6)
+        ``sum_s J_s^T E[df/du] J_s``, the equivalent linear damping of the platform's velocity.
+    """
+    if np.asarray(model.strip_pos).shape[0] == 0:
+        return np.zeros((kinematics.shape[0], 6)), np.zeros((6, 6))
+    load, dfdu = _strip_forces(model, np.asarray(kinematics, dtype=float))
+    jac = _strip_jacobians(model)
+    return load, np.einsum("scd,sce,sef->df", jac, dfdu, jac)
+
+
+def linear_stiffness(model: ModelInputs, q: np.ndarray, loads: np.ndarray) -> np.ndarray:
+    """``(B, 6, 6)`` restoring stiffness (hydrostatics plus quasi-static lines) at ``q (B, 6)``."""
+    if model.mooring_kind == "linear":
+        return np.broadcast_to(model.stiffness + model.mooring_stiffness, (q.shape[0], 6, 6)).copy()
+    trim = np.asarray(model.static_load, dtype=float)
+    _, jac = _residual_and_jacobian(model, _static_lines(model), q, loads + trim)
+    return -jac
+
+
+def _filter_response(model: ModelInputs, omega: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Pitch-band filter: ``G(omega)`` (nw,) of the output and ``(i omega - A)^-1 B`` (nw, nf) of its states."""
+    nf = model.filt_a.shape[0]
+    d = float(np.asarray(model.filt_d)[0, 0])
+    if nf == 0:
+        return np.full(omega.size, d, dtype=complex), np.zeros((omega.size, 0), dtype=complex)
+    eye = np.eye(nf)
+    states = np.stack([np.linalg.solve(1j * w * eye - model.filt_a, model.filt_b[:, 0]) for w in omega])
+    return states @ model.filt_c[0] + d, states
+
+
+def periodic_response(
+    model: ModelInputs, forcing: Forcing, period: int, *, q_mean: np.ndarray, stiffness: np.ndarray
+) -> dict[str, np.ndarray]:
+    """Linear periodic steady-state response of every record of a batch, one period long.
+
+    Parameters
+    ----------
+    model : ModelInputs
+    forcing : Forcing
+        Holds at least ``period`` samples (``period / kin_every`` of the kinematics): one whole
+        period of the synthesis, which is periodic with it.
+    period : int
+        The period in steps (the FFT length of the synthesis).
+    q_mean : (B, 6)
+        The mean equilibrium the response is about.
+    stiffness : (B, 6, 6)
+        Restoring stiffness there (:func:`linear_stiffness`).
+
+    Returns
+    -------
+    dict
+        ``displacement``, ``velocity`` ``(B, period, 6)`` (the mean included in the displacement),
+        ``filter`` ``(B, period, nf)``, ``radiation`` ``(B, period, nr)``.
+    """
+    dt = forcing.grid.dt
+    n = int(period)
+    ke = forcing.kin_every
+    if forcing.force.shape[1] < n or forcing.kinematics.shape[1] < n // ke:
+        raise ValueError(f"periodic_response: the forcing holds less than one period of {n} steps")
+    # the kinematics are periodic on their own grid only when it divides the period: else their
+    # drag is linearised (a time mean) but not applied as a load
+    drag_load = n % ke == 0
+    nb = forcing.force.shape[0]
+    omega = 2.0 * np.pi * np.fft.rfftfreq(n, dt)
+    keep = np.flatnonzero((omega > 0.0) & (omega <= OMEGA_MAX))
+    w = omega[keep]
+    # rotor: the thrust of the filtered undisturbed wind, and the mean slope of the thrust curve
+    g, g_states = _filter_response(model, omega)
+    u = np.asarray(forcing.wind[:, :n], dtype=float)
+    uhat = np.fft.rfft(u, axis=1)
+    uf = np.fft.irfft(uhat * g[None, :], n=n, axis=1)  # G(0) passes the mean as the filter does
+    tv, tf = np.asarray(model.thrust_speed, dtype=float), np.asarray(model.thrust_force, dtype=float)
+    thrust = np.interp(uf, tv, tf)
+    slope_tab = np.diff(tf) / np.diff(tv)
+    seg = np.clip(np.searchsorted(tv, uf, side="right") - 1, 0, slope_tab.size - 1)
+    slope = np.where((uf >= tv[0]) & (uf <= tv[-1]), slope_tab[seg], 0.0).mean(axis=1)  # (B,)
+    hx, hy, hz = (float(c) for c in model.hub)
+    e = np.zeros((nb, 6))
+    ex, ey = forcing.wind_dir[:, 0], forcing.wind_dir[:, 1]
+    e[:, 0], e[:, 1], e[:, 3], e[:, 4], e[:, 5] = ex, ey, -hz * ey, hz * ex, hx * ey - hy * ex
+    # the loads: waves (first order and slow drift), thrust, drag of the undisturbed kinematics
+    load = np.asarray(forcing.force[:, :n], dtype=float) + thrust[:, :, None] * e[:, None, :]
+    fhat = np.fft.rfft(load, axis=1)[:, keep]  # (B, nw, 6)
+    nk = n // ke
+    kin_omega = 2.0 * np.pi * np.fft.rfftfreq(nk, ke * dt)
+    damping = np.broadcast_to(np.asarray(model.damping, dtype=float), (nb, 6, 6)).copy()
+    for b in range(nb):
+        dload, bdrag = drag_linearisation(model, forcing.kinematics[b, :nk])
+        damping[b] += bdrag
+        if not drag_load:
+            continue
+        dhat = np.fft.rfft(dload, axis=0) * ke  # on the step grid's normalisation
+        m = min(keep[-1] + 1, kin_omega.size - 1)  # the kinematics' own Nyquist bin excluded
+        inside = keep[keep < m]
+        fhat[b, : inside.size] += dhat[inside]
+    z = np.conj(radiation_impedance(model, w))  # exp(+i omega t) convention
+    mass = np.asarray(model.mass, dtype=float)
+    xhat = np.zeros((nb, omega.size, 6), dtype=complex)
+    for b in range(nb):
+        aero = slope[b] * g[keep][:, None, None] * np.outer(e[b], e[b])[None]
+        h = (
+            -(w**2)[:, None, None] * mass[None]
+            + stiffness[b][None]
+            + 1j * w[:, None, None] * (damping[b][None] + aero + z)
+        )
+        xhat[b, keep] = np.linalg.solve(h, fhat[b][..., None])[..., 0]
+    vhat = 1j * omega[None, :, None] * xhat
+    disp = np.fft.irfft(xhat, n=n, axis=1) + q_mean[:, None, :]
+    vel = np.fft.irfft(vhat, n=n, axis=1)
+    # the rotor filter on the relative wind u - e.v, and the radiation states on v
+    vrel_hat = uhat - np.einsum("bwd,bd->bw", vhat, e)
+    nf = model.filt_a.shape[0]
+    filt = np.zeros((nb, n, nf))
+    if nf:
+        zhat = vrel_hat[:, :, None] * g_states[None]  # at omega = 0: -A^-1 B times the mean
+        filt = np.fft.irfft(zhat, n=n, axis=1)
+    nr = model.rad_a.shape[0]
+    rad = np.zeros((nb, n, nr))
+    if nr:
+        eye = np.eye(nr)
+        tr = np.stack([np.linalg.solve(1j * wi * eye - model.rad_a, model.rad_b) for wi in omega])  # (nw, nr, 6)
+        rad = np.fft.irfft(np.einsum("wrd,bwd->bwr", tr, vhat), n=n, axis=1)
+    return {"displacement": disp, "velocity": vel, "filter": filt, "radiation": rad}
+
+
+def steady_start(model: ModelInputs, forcing: Forcing, period: int, *, first: int = 0) -> InitialState:
+    """Every record of a batch at its linear periodic steady state at step ``first``.
+
+    Parameters
+    ----------
+    model : ModelInputs
+    forcing : Forcing
+        One whole period of the synthesis (at least ``period`` samples), as the record's own
+        forcing when its grid holds the period.
+    period : int
+        The synthesis period in steps (``grid.n_fft``).
+    first : int
+        The step of the period the record starts at.
+
+    Returns
+    -------
+    InitialState
+        With ``history``, the velocity of the ``stride * nlag`` steps before the start (oldest
+        first) for the radiation convolution.
+    """
+    eq = mean_equilibrium(model, forcing)
+    k = linear_stiffness(model, eq.displacement, mean_load(model, forcing))
+    resp = periodic_response(model, forcing, period, q_mean=eq.displacement, stiffness=k)
+    j = int(first) % period
+    ker, stride, _, _ = _kernel_at(model, forcing.grid.dt)
+    m = stride * ker.shape[1]
+    past = (j - m + np.arange(m)) % period
+    return InitialState(
+        displacement=resp["displacement"][:, j].copy(),
+        velocity=resp["velocity"][:, j].copy(),
+        radiation=resp["radiation"][:, j].copy(),
+        filter=resp["filter"][:, j].copy(),
+        history=np.ascontiguousarray(resp["velocity"][:, past].transpose(0, 2, 1)),
+    )
