@@ -653,7 +653,12 @@ class DynamicMooring:
         tol = 1e-6 * self.props.wet_weight * self.layout.length
         for b in range(B):
             for k in range(L):
+                shape = r[b, k].copy()
                 _static_solve_flat(r[b, k], self.model.params, self._w, 200, tol)
+                if not np.isfinite(r[b, k]).all():
+                    # Newton on a slack line with most of it on the seabed can meet a singular
+                    # matrix: the relaxation below settles the line from its catenary instead
+                    r[b, k] = shape
         state = DynamicState(
             r=r,
             v=np.zeros_like(r),
