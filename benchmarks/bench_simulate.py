@@ -13,6 +13,7 @@ The platform is the BEM model of ``--wamit PREFIX`` or ``results/hydro/platform.
 exists, else an OC4-sized synthetic stand-in with the same number of Morison strips. Usage::
 
     .venv/bin/python benchmarks/bench_simulate.py [--record 600] [--moordyn-seconds 60] [--repeat 3] [--wamit PREFIX]
+    .venv/bin/python benchmarks/bench_simulate.py --starts [--repeat 3] [--wamit PREFIX]   # issue 23, target 2
 """
 
 from __future__ import annotations
@@ -116,6 +117,34 @@ def time_ours(model: sim.ModelInputs, batch: int, record: float, repeat: int = 1
     return best * 3600.0 / record / batch
 
 
+def time_starts(model: sim.ModelInputs, batch: int, repeat: int = 1) -> dict[str, float]:
+    """CPU s per sea state of ``simulate_batch`` (forcing, start, 3,600 s kept, statistics) for the
+    starts of issue 23's target 2: at rest with 600 s of transient (the default), at the mean
+    equilibrium with 600 s, at the linear periodic steady state with 200 s and 100 s."""
+    cases = {
+        "wind_speed": np.linspace(6.0, 20.0, batch),
+        "wind_dir": np.full(batch, 328.09),
+        "hs": np.linspace(1.5, 5.0, batch),
+        "tp": np.linspace(7.0, 12.0, batch),
+        "wave_dir": np.full(batch, 316.09),
+    }
+    kw = dict(mooring_system="MS2", seed=1, model_inputs=model, fatigue_cfg={}, stats_cfg={"block": 20.0})
+    starts = {"rest 600 s": ("rest", 600.0), "equilibrium 600 s": ("equilibrium", 600.0)}
+    starts |= {"steady 200 s": ("steady", 200.0), "steady 100 s": ("steady", 100.0)}
+    out = {}
+    for name, (start, transient) in starts.items():
+        cfg = {"duration": 3600.0, "transient": transient, "dt": 0.1, "start": start}
+        warm = {k: v[:1] for k, v in cases.items()}
+        sim.simulate_batch(warm, case_ids=np.arange(1), sim_cfg={**cfg, "duration": 60.0}, **kw)  # JIT warm-up
+        best = math.inf
+        for _ in range(repeat):
+            t0 = time.process_time()
+            sim.simulate_batch(cases, case_ids=np.arange(batch), sim_cfg=cfg, **kw)
+            best = min(best, time.process_time() - t0)
+        out[name] = best / batch
+    return out
+
+
 MOORDYN_DECK = """--------------------- MoorDyn Input File ------------------------------------
 moorlife benchmark: OC4 layout, {name} chain
 ----------------------- LINE TYPES ------------------------------------------
@@ -199,6 +228,7 @@ def main() -> None:
     ap.add_argument("--batch", type=int, default=8)
     ap.add_argument("--repeat", type=int, default=3, help="timings of ours per figure; the best is printed")
     ap.add_argument("--wamit", default=None, help="WAMIT prefix for the platform (else results/hydro/platform.nc)")
+    ap.add_argument("--starts", action="store_true", help="only the cost per sea state of each start (target 2)")
     args = ap.parse_args()
     platform_cfg = read_platform_config(ROOT / "config/platform.yaml")
     table = read_mooring_systems(ROOT / "config/mooring_systems.tsv")
@@ -208,6 +238,13 @@ def main() -> None:
         f"record {args.record:.0f} s per timing, best of {args.repeat}, dt 0.1 s, MS2 lines, "
         "CPU s per simulated hour per sea state"
     )
+    if args.starts:
+        model, source = platform_model(platform_cfg, row, "dynamic", args.wamit)
+        cost = time_starts(model, args.batch, args.repeat)
+        print(f"CPU s per sea state, batch {args.batch}, 3,600 s kept, dynamic lines ({source}):")
+        for name, c in cost.items():
+            print(f"  {name:<18s} {c:6.3f}   ratio to rest 600 s: {c / cost['rest 600 s']:.3f}")
+        return
     ours = {}
     for kind in ("quasistatic", "dynamic"):
         model, source = platform_model(platform_cfg, row, kind, args.wamit)

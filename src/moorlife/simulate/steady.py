@@ -26,6 +26,9 @@ Only the start changes; the integration that follows is the full nonlinear model
 
 from __future__ import annotations
 
+import math
+
+import numba
 import numpy as np
 
 from moorlife.simulate.forcing import Forcing
@@ -45,6 +48,11 @@ __all__ = ["drag_linearisation", "linear_stiffness", "periodic_response", "stead
 #: Frequencies above this (rad/s) carry no response worth solving for (the platform's RAOs are
 #: negligible there and the forcing spectra have no energy).
 OMEGA_MAX = 4.0
+#: Samples (at least) of the time means of the drag linearisation: a mean of a stationary record.
+MEAN_SAMPLES = 4096
+#: Step of the frequency grid the radiation impedance is evaluated on and interpolated from,
+#: rad/s (it is smooth on the scale of 2 pi / its memory: 0.1 rad/s for 60 s).
+IMPEDANCE_STEP = 0.02
 
 
 def _strip_jacobians(model: ModelInputs) -> np.ndarray:
@@ -60,22 +68,70 @@ def _strip_jacobians(model: ModelInputs) -> np.ndarray:
     return j
 
 
+@numba.njit(cache=True, error_model="numpy")
+def _drag_pass(u, pos, axis, cn, ca, thin, load, mean_abs_n, mean_outer, mean_abs_a):  # pragma: no cover - numba
+    """The drag load ``(nk, 6)`` of each sample of the kinematics ``u (nk, 3, ns)``, and over every
+    ``thin``-th sample the sums of ``|u_n|`` ``(ns,)``, ``u_n u_n^T / |u_n|`` (upper triangle of
+    ``(ns, 3, 3)``) and ``|u_a|``."""
+    nk, _, ns = u.shape
+    for k in range(nk):
+        f0 = f1 = f2 = m3 = m4 = m5 = 0.0
+        uk = u[k]
+        for s in range(ns):  # the strips of one sample (contiguous), the sums in registers
+            ax, ay, az = axis[0, s], axis[1, s], axis[2, s]
+            ux, uy, uz = float(uk[0, s]), float(uk[1, s]), float(uk[2, s])
+            ua = ux * ax + uy * ay + uz * az
+            nx, ny, nz = ux - ua * ax, uy - ua * ay, uz - ua * az
+            un = math.sqrt(nx * nx + ny * ny + nz * nz)
+            c = ca[s] * abs(ua) * ua
+            fx = cn[s] * un * nx + c * ax
+            fy = cn[s] * un * ny + c * ay
+            fz = cn[s] * un * nz + c * az
+            px, py, pz = pos[0, s], pos[1, s], pos[2, s]
+            f0 += fx
+            f1 += fy
+            f2 += fz
+            m3 += py * fz - pz * fy
+            m4 += pz * fx - px * fz
+            m5 += px * fy - py * fx
+        load[k, 0], load[k, 1], load[k, 2], load[k, 3], load[k, 4], load[k, 5] = f0, f1, f2, m3, m4, m5
+    for k in range(0, nk, thin):
+        uk = u[k]
+        for s in range(ns):
+            ax, ay, az = axis[0, s], axis[1, s], axis[2, s]
+            ux, uy, uz = float(uk[0, s]), float(uk[1, s]), float(uk[2, s])
+            ua = ux * ax + uy * ay + uz * az
+            nx, ny, nz = ux - ua * ax, uy - ua * ay, uz - ua * az
+            un = math.sqrt(nx * nx + ny * ny + nz * nz)
+            mean_abs_n[s] += un
+            mean_abs_a[s] += abs(ua)
+            if un > 0.0:
+                r = 1.0 / un
+                mean_outer[s, 0, 0] += nx * nx * r
+                mean_outer[s, 0, 1] += nx * ny * r
+                mean_outer[s, 0, 2] += nx * nz * r
+                mean_outer[s, 1, 1] += ny * ny * r
+                mean_outer[s, 1, 2] += ny * nz * r
+                mean_outer[s, 2, 2] += nz * nz * r
+
+
 def _strip_forces(model: ModelInputs, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Morison drag of the undisturbed kinematics ``u (nk, 3, ns)``: load ``(nk, 6)`` and ``E[df/du] (ns, 3, 3)``."""
-    a = np.asarray(model.strip_axis, dtype=float)  # (ns, 3)
-    cn = np.asarray(model.strip_cdn, dtype=float)
-    ca = np.asarray(model.strip_cda, dtype=float)
-    ua = np.einsum("kcs,sc->ks", u, a)  # axial component (nk, ns)
-    un = u - ua[:, None, :] * a.T[None]  # normal part (nk, 3, ns)
-    mag = np.sqrt(np.einsum("kcs,kcs->ks", un, un))
-    f = cn[None, None, :] * mag[:, None, :] * un + (ca * np.abs(ua) * ua)[:, None, :] * a.T[None]
-    jac = _strip_jacobians(model)
-    load = np.einsum("kcs,scd->kd", f, jac)  # generalised force, J^T f
+    a = np.ascontiguousarray(model.strip_axis, dtype=float)  # (ns, 3)
+    cn = np.ascontiguousarray(model.strip_cdn, dtype=float)
+    ca = np.ascontiguousarray(model.strip_cda, dtype=float)
+    nk, _, ns = u.shape
+    thin = max(1, nk // MEAN_SAMPLES)
+    load = np.empty((nk, 6))
+    abs_n, abs_a, outer = np.zeros(ns), np.zeros(ns), np.zeros((ns, 3, 3))
+    pos = np.ascontiguousarray(np.asarray(model.strip_pos, dtype=float).T)
+    _drag_pass(np.ascontiguousarray(u), pos, np.ascontiguousarray(a.T), cn, ca, thin, load, abs_n, outer, abs_a)
+    nk = len(range(0, nk, thin))  # the samples of the means
+    for i, e in ((1, 0), (2, 0), (2, 1)):  # the kernel sums the upper triangle
+        outer[:, i, e] = outer[:, e, i]
     proj = np.eye(3)[None] - a[:, :, None] * a[:, None, :]  # (ns, 3, 3)
-    safe = np.where(mag > 0.0, mag, 1.0)
-    outer = np.einsum("kcs,kes->sce", un / safe[:, None, :], un) / u.shape[0]  # E[u_n u_n^T / |u_n|]
-    dfdu = cn[:, None, None] * (mag.mean(axis=0)[:, None, None] * proj + outer)
-    dfdu += (2.0 * ca * np.abs(ua).mean(axis=0))[:, None, None] * (a[:, :, None] * a[:, None, :])
+    dfdu = cn[:, None, None] * ((abs_n / nk)[:, None, None] * proj + outer / nk)
+    dfdu += (2.0 * ca * abs_a / nk)[:, None, None] * (a[:, :, None] * a[:, None, :])
     return load, dfdu
 
 
@@ -97,7 +153,7 @@ def drag_linearisation(model: ModelInputs, kinematics: np.ndarray) -> tuple[np.n
     """
     if np.asarray(model.strip_pos).shape[0] == 0:
         return np.zeros((kinematics.shape[0], 6)), np.zeros((6, 6))
-    load, dfdu = _strip_forces(model, np.asarray(kinematics, dtype=float))
+    load, dfdu = _strip_forces(model, np.asarray(kinematics))
     jac = _strip_jacobians(model)
     return load, np.einsum("scd,sce,sef->df", jac, dfdu, jac)
 
@@ -117,9 +173,20 @@ def _filter_response(model: ModelInputs, omega: np.ndarray) -> tuple[np.ndarray,
     d = float(np.asarray(model.filt_d)[0, 0])
     if nf == 0:
         return np.full(omega.size, d, dtype=complex), np.zeros((omega.size, 0), dtype=complex)
-    eye = np.eye(nf)
-    states = np.stack([np.linalg.solve(1j * w * eye - model.filt_a, model.filt_b[:, 0]) for w in omega])
+    lhs = 1j * omega[:, None, None] * np.eye(nf)[None] - model.filt_a[None]
+    rhs = np.broadcast_to(model.filt_b.astype(complex), (omega.size, nf, 1))
+    states = np.linalg.solve(lhs, rhs)[..., 0]
     return states @ model.filt_c[0] + d, states
+
+
+def _impedance(model: ModelInputs, omega: np.ndarray) -> np.ndarray:
+    """The model's radiation impedance at ``omega``, interpolated from a grid of :data:`IMPEDANCE_STEP`."""
+    grid = np.arange(0.0, omega.max() + 2 * IMPEDANCE_STEP, IMPEDANCE_STEP)
+    z = radiation_impedance(model, grid).reshape(grid.size, 36)
+    out = np.empty((omega.size, 36), dtype=complex)
+    for k in range(36):
+        out[:, k] = np.interp(omega, grid, z[:, k].real) + 1j * np.interp(omega, grid, z[:, k].imag)
+    return out.reshape(omega.size, 6, 6)
 
 
 def periodic_response(
@@ -187,7 +254,7 @@ def periodic_response(
         m = min(keep[-1] + 1, kin_omega.size - 1)  # the kinematics' own Nyquist bin excluded
         inside = keep[keep < m]
         fhat[b, : inside.size] += dhat[inside]
-    z = np.conj(radiation_impedance(model, w))  # exp(+i omega t) convention
+    z = np.conj(_impedance(model, w))  # exp(+i omega t) convention
     mass = np.asarray(model.mass, dtype=float)
     xhat = np.zeros((nb, omega.size, 6), dtype=complex)
     for b in range(nb):
