@@ -225,63 +225,94 @@ def periodic_response(
     omega = 2.0 * np.pi * np.fft.rfftfreq(n, dt)
     keep = np.flatnonzero((omega > 0.0) & (omega <= OMEGA_MAX))
     w = omega[keep]
+    shared = {
+        "omega": omega,
+        "keep": keep,
+        "filter": _filter_response(model, omega),
+        "impedance": np.conj(_impedance(model, w)),  # exp(+i omega t) convention
+        "radiation": _radiation_states(model, omega),
+        "kin_bins": (n // ke) // 2 + 1 if drag_load else 0,
+    }
+    out: dict[str, list[np.ndarray]] = {"displacement": [], "velocity": [], "filter": [], "radiation": []}
+    for b in range(nb):  # case by case: a case's bits do not depend on the batch
+        one = _case_response(
+            model,
+            shared,
+            force=np.asarray(forcing.force[b, :n], dtype=float),
+            wind=np.asarray(forcing.wind[b, :n], dtype=float),
+            wind_dir=np.asarray(forcing.wind_dir[b], dtype=float),
+            kinematics=forcing.kinematics[b, : n // ke],
+            kin_every=ke,
+            stiffness=np.asarray(stiffness[b], dtype=float),
+        )
+        one["displacement"] += q_mean[b][None, :]
+        for key, val in one.items():
+            out[key].append(val)
+    return {key: np.stack(val) for key, val in out.items()}
+
+
+def _radiation_states(model: ModelInputs, omega: np.ndarray) -> np.ndarray:
+    """``(nw, nr, 6)``: the state-space radiation states per unit velocity, ``(i omega - A)^-1 B``."""
+    nr = model.rad_a.shape[0]
+    if nr == 0:
+        return np.zeros((omega.size, 0, 6), dtype=complex)
+    lhs = 1j * omega[:, None, None] * np.eye(nr)[None] - model.rad_a[None]
+    return np.linalg.solve(lhs, np.broadcast_to(model.rad_b.astype(complex), (omega.size, nr, 6)))
+
+
+def _case_response(
+    model: ModelInputs,
+    shared: dict,
+    *,
+    force: np.ndarray,
+    wind: np.ndarray,
+    wind_dir: np.ndarray,
+    kinematics: np.ndarray,
+    kin_every: int,
+    stiffness: np.ndarray,
+) -> dict[str, np.ndarray]:
+    """One record's periodic response about zero (see :func:`periodic_response`)."""
+    n = force.shape[0]
+    omega, keep = shared["omega"], shared["keep"]
+    w = omega[keep]
+    g, g_states = shared["filter"]
     # rotor: the thrust of the filtered undisturbed wind, and the mean slope of the thrust curve
-    g, g_states = _filter_response(model, omega)
-    u = np.asarray(forcing.wind[:, :n], dtype=float)
-    uhat = np.fft.rfft(u, axis=1)
-    uf = np.fft.irfft(uhat * g[None, :], n=n, axis=1)  # G(0) passes the mean as the filter does
+    uhat = np.fft.rfft(wind)
+    uf = np.fft.irfft(uhat * g, n=n)  # G(0) passes the mean as the filter does
     tv, tf = np.asarray(model.thrust_speed, dtype=float), np.asarray(model.thrust_force, dtype=float)
-    thrust = np.interp(uf, tv, tf)
     slope_tab = np.diff(tf) / np.diff(tv)
     seg = np.clip(np.searchsorted(tv, uf, side="right") - 1, 0, slope_tab.size - 1)
-    slope = np.where((uf >= tv[0]) & (uf <= tv[-1]), slope_tab[seg], 0.0).mean(axis=1)  # (B,)
+    slope = float(np.where((uf >= tv[0]) & (uf <= tv[-1]), slope_tab[seg], 0.0).mean())
     hx, hy, hz = (float(c) for c in model.hub)
-    e = np.zeros((nb, 6))
-    ex, ey = forcing.wind_dir[:, 0], forcing.wind_dir[:, 1]
-    e[:, 0], e[:, 1], e[:, 3], e[:, 4], e[:, 5] = ex, ey, -hz * ey, hz * ex, hx * ey - hy * ex
+    ex, ey = float(wind_dir[0]), float(wind_dir[1])
+    e = np.array([ex, ey, 0.0, -hz * ey, hz * ex, hx * ey - hy * ex])
     # the loads: waves (first order and slow drift), thrust, drag of the undisturbed kinematics
-    load = np.asarray(forcing.force[:, :n], dtype=float) + thrust[:, :, None] * e[:, None, :]
-    fhat = np.fft.rfft(load, axis=1)[:, keep]  # (B, nw, 6)
-    nk = n // ke
-    kin_omega = 2.0 * np.pi * np.fft.rfftfreq(nk, ke * dt)
-    damping = np.broadcast_to(np.asarray(model.damping, dtype=float), (nb, 6, 6)).copy()
-    for b in range(nb):
-        dload, bdrag = drag_linearisation(model, forcing.kinematics[b, :nk])
-        damping[b] += bdrag
-        if not drag_load:
-            continue
-        dhat = np.fft.rfft(dload, axis=0) * ke  # on the step grid's normalisation
-        m = min(keep[-1] + 1, kin_omega.size - 1)  # the kinematics' own Nyquist bin excluded
-        inside = keep[keep < m]
-        fhat[b, : inside.size] += dhat[inside]
-    z = np.conj(_impedance(model, w))  # exp(+i omega t) convention
-    mass = np.asarray(model.mass, dtype=float)
-    xhat = np.zeros((nb, omega.size, 6), dtype=complex)
-    for b in range(nb):
-        aero = slope[b] * g[keep][:, None, None] * np.outer(e[b], e[b])[None]
-        h = (
-            -(w**2)[:, None, None] * mass[None]
-            + stiffness[b][None]
-            + 1j * w[:, None, None] * (damping[b][None] + aero + z)
-        )
-        xhat[b, keep] = np.linalg.solve(h, fhat[b][..., None])[..., 0]
-    vhat = 1j * omega[None, :, None] * xhat
-    disp = np.fft.irfft(xhat, n=n, axis=1) + q_mean[:, None, :]
-    vel = np.fft.irfft(vhat, n=n, axis=1)
+    load = force + np.interp(uf, tv, tf)[:, None] * e[None, :]
+    fhat = np.fft.rfft(load, axis=0)[keep]  # (nw, 6)
+    dload, bdrag = drag_linearisation(model, kinematics)
+    if shared["kin_bins"]:
+        dhat = np.fft.rfft(dload, axis=0) * kin_every  # on the step grid's normalisation
+        inside = keep[keep < shared["kin_bins"] - 1]  # the kinematics' own Nyquist bin excluded
+        fhat[: inside.size] += dhat[inside]
+    damping = np.asarray(model.damping, dtype=float) + bdrag
+    aero = slope * g[keep][:, None, None] * np.outer(e, e)[None]
+    h = (
+        -(w**2)[:, None, None] * np.asarray(model.mass, dtype=float)[None]
+        + stiffness[None]
+        + 1j * w[:, None, None] * (damping[None] + aero + shared["impedance"])
+    )
+    xhat = np.zeros((omega.size, 6), dtype=complex)
+    xhat[keep] = np.linalg.solve(h, fhat[..., None])[..., 0]
+    vhat = 1j * omega[:, None] * xhat
     # the rotor filter on the relative wind u - e.v, and the radiation states on v
-    vrel_hat = uhat - np.einsum("bwd,bd->bw", vhat, e)
-    nf = model.filt_a.shape[0]
-    filt = np.zeros((nb, n, nf))
-    if nf:
-        zhat = vrel_hat[:, :, None] * g_states[None]  # at omega = 0: -A^-1 B times the mean
-        filt = np.fft.irfft(zhat, n=n, axis=1)
-    nr = model.rad_a.shape[0]
-    rad = np.zeros((nb, n, nr))
-    if nr:
-        eye = np.eye(nr)
-        tr = np.stack([np.linalg.solve(1j * wi * eye - model.rad_a, model.rad_b) for wi in omega])  # (nw, nr, 6)
-        rad = np.fft.irfft(np.einsum("wrd,bwd->bwr", tr, vhat), n=n, axis=1)
-    return {"displacement": disp, "velocity": vel, "filter": filt, "radiation": rad}
+    zhat = (uhat - vhat @ e)[:, None] * g_states  # at omega = 0: -A^-1 B times the mean
+    rhat = np.einsum("wrd,wd->wr", shared["radiation"], vhat)
+    return {
+        "displacement": np.fft.irfft(xhat, n=n, axis=0),
+        "velocity": np.fft.irfft(vhat, n=n, axis=0),
+        "filter": np.fft.irfft(zhat, n=n, axis=0),
+        "radiation": np.fft.irfft(rhat, n=n, axis=0),
+    }
 
 
 def steady_start(model: ModelInputs, forcing: Forcing, period: int, *, first: int = 0) -> InitialState:
