@@ -135,7 +135,7 @@ def time_starts(model: sim.ModelInputs, batch: int, repeat: int = 1) -> dict[str
     for name, (start, transient) in starts.items():
         cfg = {"duration": 3600.0, "transient": transient, "dt": 0.1, "start": start}
         warm = {k: v[:1] for k, v in cases.items()}
-        sim.simulate_batch(warm, case_ids=np.arange(1), sim_cfg={**cfg, "duration": 60.0}, **kw)  # JIT warm-up
+        sim.simulate_batch(warm, case_ids=np.arange(1), sim_cfg={**cfg, "duration": 120.0}, **kw)  # JIT warm-up
         best = math.inf
         for _ in range(repeat):
             t0 = time.process_time()

@@ -17,7 +17,8 @@ The linear model about the mean equilibrium (:func:`~moorlife.simulate.initial.m
   ``B = sum_s J_s^T E[df/du] J_s`` with the time mean over the record, and the drag force of the
   undisturbed kinematics as a load (its difference-frequency part drives the slow drift too);
 * rotor: the thrust of the filtered undisturbed wind as a load, and the aerodynamic damping
-  ``E[T'] G(omega) e e^T`` of the pitch-band filter ``G`` on the relative wind;
+  ``max(E[T'], 0) G(omega) e e^T`` of the pitch-band filter ``G`` on the relative wind (none
+  above rated, where the thrust curve falls);
 * the model's extra linear damping. The lines' own drag is not in it (they start in their
   static shape, as before).
 
@@ -283,6 +284,10 @@ def _case_response(
     slope_tab = np.diff(tf) / np.diff(tv)
     seg = np.clip(np.searchsorted(tv, uf, side="right") - 1, 0, slope_tab.size - 1)
     slope = float(np.where((uf >= tv[0]) & (uf <= tv[-1]), slope_tab[seg], 0.0).mean())
+    # above rated the thrust falls with the wind: a negative aerodynamic damping, which the linear
+    # model would turn into a near-unstable slow-drift resonance that the nonlinear record (drag,
+    # the lines) never reaches. The start takes none rather than a negative one.
+    slope = max(slope, 0.0)
     hx, hy, hz = (float(c) for c in model.hub)
     ex, ey = float(wind_dir[0]), float(wind_dir[1])
     e = np.array([ex, ey, 0.0, -hz * ey, hz * ex, hx * ey - hy * ex])
