@@ -31,7 +31,7 @@ SPACES = (("5d", None), ("6d_T", 1.0), ("6d_T0.5", 0.5))
 
 def validation_r(results: str, ms: str, cases0: xr.Dataset, ws: np.ndarray, ct: np.ndarray) -> tuple[list[str], dict]:
     """Validation r per output of one system in each space of :data:`SPACES`."""
-    st = lc.RBFSettings()
+    st = lc.RBFSettings.from_config(None, source="lifecycle.rbf")  # the schema defaults
     grid = rbf.shape_grid(st.grid_min, st.grid_max, st.grid_n)
     sims = xr.open_zarr(f"{results}/{ms}/simulations.zarr", consolidated=False).load()
     dim = names.CASE
