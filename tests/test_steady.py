@@ -130,3 +130,17 @@ def test_steady_start_sits_near_the_converged_nonlinear_state():
         steady = np.sqrt(np.mean((lin[at, d] - ref[d, at]) ** 2))
         rest = np.sqrt(np.mean((eq.displacement[0, d] - ref[d, at]) ** 2))
         assert steady < 0.2 * rest, (d, steady, rest)  # 0.007 against 0.29-0.39 m when written
+
+
+def test_line_damping_is_measured_once_for_dynamic_lines_only():
+    """The dynamic lines take energy out of a slow surge or sway (drag, seabed friction); heavier
+    lines take more; quasi-static lines have none. Cached per model object."""
+    from moorlife.simulate.steady import line_damping
+
+    light, heavy = moored("MS1", kind="dynamic"), moored("MS6", kind="dynamic")
+    b1, b6 = line_damping(light), line_damping(heavy)
+    assert b1[0, 0] > 0 and b1[1, 1] > 0
+    assert b6[0, 0] > 1.5 * b1[0, 0]
+    assert np.count_nonzero(b1) == 2  # surge and sway only
+    assert line_damping(light) is b1
+    np.testing.assert_array_equal(line_damping(moored("MS1")), np.zeros((6, 6)))

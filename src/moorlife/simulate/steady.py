@@ -19,8 +19,9 @@ The linear model about the mean equilibrium (:func:`~moorlife.simulate.initial.m
 * rotor: the thrust of the filtered undisturbed wind as a load, and the aerodynamic damping
   ``max(E[T'], 0) G(omega) e e^T`` of the pitch-band filter ``G`` on the relative wind (none
   above rated, where the thrust curve falls);
-* the model's extra linear damping. The lines' own drag is not in it (they start in their
-  static shape, as before).
+* the dynamic lines' slow-drift damping (drag and seabed friction), measured once per model by a
+  forced slow oscillation (:func:`line_damping`);
+* the model's extra linear damping. The lines start in their static shape, as before.
 
 Only the start changes; the integration that follows is the full nonlinear model.
 """
@@ -28,6 +29,8 @@ Only the start changes; the integration that follows is the full nonlinear model
 from __future__ import annotations
 
 import math
+import weakref
+from typing import Any
 
 import numba
 import numpy as np
@@ -35,12 +38,14 @@ import numpy as np
 from moorlife.simulate.forcing import Forcing
 from moorlife.simulate.initial import (
     InitialState,
+    _dynamic_lines,
     _residual_and_jacobian,
     _static_lines,
     mean_equilibrium,
     mean_load,
 )
 from moorlife.simulate.integration import _kernel_at
+from moorlife.simulate.kernel import _fairlead_motion, _moor_generalised
 from moorlife.simulate.linear import radiation_impedance
 from moorlife.simulate.model import ModelInputs
 
@@ -180,6 +185,52 @@ def _filter_response(model: ModelInputs, omega: np.ndarray) -> tuple[np.ndarray,
     return states @ model.filt_c[0] + d, states
 
 
+#: Forced slow oscillation that measures the dynamic lines' damping: amplitude (m) and period (s).
+LINE_DAMPING_TEST = (1.0, 100.0)
+_LINE_DAMPING: dict[int, tuple[Any, np.ndarray]] = {}
+
+
+def line_damping(model: ModelInputs) -> np.ndarray:
+    """``(6, 6)`` slow-drift damping of the model's dynamic lines (zero for other moorings).
+
+    Measured once per model, as a decay or forced-oscillation test would: the lines are driven in
+    surge, and in sway, by a harmonic platform motion of :data:`LINE_DAMPING_TEST` about the
+    origin, and the energy their forces take out over the second cycle gives the equivalent linear
+    damping ``B = -int F v dt / (pi a^2 omega)`` (drag and seabed friction of the lines). Cached
+    for the life of the model object.
+    """
+    hit = _LINE_DAMPING.get(id(model))
+    if hit is not None and hit[0]() is model:
+        return hit[1]
+    out = np.zeros((6, 6))
+    lines = _dynamic_lines(model, 2) if model.mooring_kind == "dynamic" else None
+    if lines is not None:
+        amp, period = LINE_DAMPING_TEST
+        om = 2.0 * np.pi / period
+        dt = 0.1
+        n = int(round(2 * period / dt))
+        fair = np.ascontiguousarray(model.fairleads, dtype=float)
+        q, v = np.zeros((2, 6)), np.zeros((2, 6))
+        r, rv = np.empty((2, fair.shape[0], 3)), np.empty((2, fair.shape[0], 3))
+        _fairlead_motion(q, v, fair, r, rv)
+        state = lines.init(r.copy())
+        f6 = np.zeros((2, 6))
+        work = np.zeros(2)
+        for j in range(1, n + 1):
+            t = j * dt
+            q[0, 0] = q[1, 1] = amp * np.sin(om * t)
+            v[0, 0] = v[1, 1] = amp * om * np.cos(om * t)
+            _fairlead_motion(q, v, fair, r, rv)
+            forces, state = lines.step(state, r, rv, dt)
+            f6[:] = 0.0
+            _moor_generalised(q, np.ascontiguousarray(forces, dtype=float), fair, f6)
+            if j > n // 2:  # the second cycle, trapezoid-free (a sum over whole cycles)
+                work += np.array([f6[0, 0] * v[0, 0], f6[1, 1] * v[1, 1]]) * dt
+        out[0, 0], out[1, 1] = np.clip(-work / (np.pi * amp**2 * om), 0.0, None)
+    _LINE_DAMPING[id(model)] = (weakref.ref(model), out)
+    return out
+
+
 def _impedance(model: ModelInputs, omega: np.ndarray) -> np.ndarray:
     """The model's radiation impedance at ``omega``, interpolated from a grid of :data:`IMPEDANCE_STEP`."""
     grid = np.arange(0.0, omega.max() + 2 * IMPEDANCE_STEP, IMPEDANCE_STEP)
@@ -233,6 +284,7 @@ def periodic_response(
         "impedance": np.conj(_impedance(model, w)),  # exp(+i omega t) convention
         "radiation": _radiation_states(model, omega),
         "kin_bins": (n // ke) // 2 + 1 if drag_load else 0,
+        "line_damping": line_damping(model),
     }
     out: dict[str, list[np.ndarray]] = {"displacement": [], "velocity": [], "filter": [], "radiation": []}
     for b in range(nb):  # case by case: a case's bits do not depend on the batch
@@ -299,7 +351,7 @@ def _case_response(
         dhat = np.fft.rfft(dload, axis=0) * kin_every  # on the step grid's normalisation
         inside = keep[keep < shared["kin_bins"] - 1]  # the kinematics' own Nyquist bin excluded
         fhat[: inside.size] += dhat[inside]
-    damping = np.asarray(model.damping, dtype=float) + bdrag
+    damping = np.asarray(model.damping, dtype=float) + bdrag + shared["line_damping"]
     aero = slope * g[keep][:, None, None] * np.outer(e, e)[None]
     h = (
         -(w**2)[:, None, None] * np.asarray(model.mass, dtype=float)[None]
