@@ -27,9 +27,7 @@ def monthly(path: str, curve: str, top: int) -> pd.DataFrame:
     rows = []
     for li, line in enumerate(lines):
         per_hour = {
-            k: np.diff(
-                np.concatenate([[0.0], ds[f"{k}_cumulative"].sel(curve=curve).values[:, li].astype(float)])
-            )
+            k: np.diff(np.concatenate([[0.0], ds[f"{k}_cumulative"].sel(curve=curve).values[:, li].astype(float)]))
             for k in ("truth", "reconstruction", "bins")
         }
         total = per_hour["truth"].sum()
