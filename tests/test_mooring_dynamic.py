@@ -268,17 +268,9 @@ def test_a_slack_line_whose_newton_solve_breaks_down_still_starts_static():
     singular matrix (most of the line on the seabed). The start falls back on the catenary and the
     relaxation settles it: the tensions are the quasi-static ones (found by the steady start of
     issue 23, which starts storm states off their mean offset)."""
-    ms1 = dict(
-        MS2,
-        mooring_system="MS1",
-        mass_kg_per_m=92.0,
-        pretension_kN=811.0,
-        link_diameter_mm=68.0,
-        equivalent_diameter_m=0.1199,
-        EA_N=5.43e8,
-        MBS_N=5420364.0,
-    )
-    props = lines.line_properties(ms1)
+    from test_simulate import ROWS
+
+    props = lines.line_properties({**ROWS["MS1"], "mooring_system": "MS1"})
     offset = np.array([[11.0, 18.6, 0.0]])
     r = fairlead_positions(LAYOUT, offset)
     model = make_mooring("dynamic", props, LAYOUT, {}, batch=1)

@@ -82,8 +82,9 @@ def periodic_forcing(model, sea, ids, ms, seed, settings) -> sim.Forcing:
     ends in the same kept window is this one, repeated (:func:`window_forcing`). Its first
     ``n_steps + 1`` samples are bit for bit those of the record itself.
     """
-    grid = env.record_grid(settings.duration, 600.0, settings.dt)
-    period = env.RecordGrid(dt=grid.dt, n_steps=grid.n_fft - 1, n_fft=grid.n_fft, d_omega=grid.d_omega)
+    from moorlife.simulate.batch import period_grid
+
+    period = period_grid(env.record_grid(settings.duration, 600.0, settings.dt))
     return sim.batch_forcing(
         sea, case_ids=ids, mooring_system=ms, seed=seed, model=model, settings=settings, grid=period
     )

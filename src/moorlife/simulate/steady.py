@@ -42,7 +42,6 @@ from moorlife.simulate.initial import (
     _residual_and_jacobian,
     _static_lines,
     mean_equilibrium,
-    mean_load,
 )
 from moorlife.simulate.integration import _kernel_at
 from moorlife.simulate.kernel import _fairlead_motion, _moor_generalised
@@ -393,7 +392,7 @@ def steady_start(model: ModelInputs, forcing: Forcing, period: int, *, first: in
         first) for the radiation convolution.
     """
     eq = mean_equilibrium(model, forcing)
-    k = linear_stiffness(model, eq.displacement, mean_load(model, forcing))
+    k = linear_stiffness(model, eq.displacement, eq.load)
     resp = periodic_response(model, forcing, period, q_mean=eq.displacement, stiffness=k)
     j = int(first) % period
     ker, stride, _, _ = _kernel_at(model, forcing.grid.dt)
