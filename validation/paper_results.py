@@ -2,11 +2,12 @@
 
 Usage::
 
-    .venv/bin/python validation/paper_results.py [results]
+    .venv/bin/python validation/paper_results.py [results] [--against OTHER_RESULTS]
 
 Reads ``results/{ms}/lifecycle.zarr``, ``results/comparison/summary.csv`` and
 ``results/comparison/recommendation.yaml`` (nothing is recomputed), so every number in the
-README's results section can be traced to the stores of one run.
+README's results section can be traced to the stores of one run. With ``--against``, a last table
+compares the life-cycle damage and the validation r with another run's (a change of default).
 """
 
 from __future__ import annotations
@@ -79,7 +80,37 @@ def table7(summary: pd.DataFrame) -> str:
     return _table(["system", "S-N M1", "S-N M2", "S-N M3", "T-N M1", "T-N M2", "T-N M3"], rows)
 
 
-def main(results: str = "results") -> None:
+def changes_table(results: Path, other: Path) -> str:
+    """Per system: the S-N life-cycle damage change of each line against ``other``, % (T-N alike),
+    with the life band's half-width ``k sigma`` of ``other`` (its fatigue-life band:
+    ``(high - low) / (high + low)``), and the largest validation r change over the outputs."""
+    new = pd.read_csv(results / "comparison" / "summary.csv")
+    old = pd.read_csv(other / "comparison" / "summary.csv")
+    key = ["mooring_system", "line", "curve"]
+    m = new.merge(old, on=key, suffixes=("", "_old"))
+    m["change_pct"] = 100 * (m.lifecycle_damage / m.lifecycle_damage_old - 1)
+    m["band_pct"] = (
+        100 * (m.fatigue_life_high_old - m.fatigue_life_low_old) / (m.fatigue_life_high_old + m.fatigue_life_low_old)
+    )
+    rows = []
+    for ms, d in m[m.curve == "sn"].groupby("mooring_system", sort=False):
+        c = {r.line: r for r in d.itertuples()}
+        r_new = open_zarr(results / ms / "lifecycle.zarr")["validation_r"].to_series()
+        r_old = open_zarr(other / ms / "lifecycle.zarr")["validation_r"].to_series()
+        dr = (r_new - r_old).abs()
+        rows.append(
+            [ms]
+            + [f"{c[ln].change_pct:+.1f}" for ln in ("M1", "M2", "M3")]
+            + [" / ".join(f"{c[ln].band_pct:.1f}" for ln in ("M1", "M2", "M3"))]
+            + [f"{dr.max():.3f} ({dr.idxmax()})"]
+        )
+    return _table(
+        ["system", "M1 damage change %", "M2", "M3", "life band half-width k sigma %, before", "largest |r change|"],
+        rows,
+    )
+
+
+def main(results: str = "results", *rest: str) -> None:
     root = Path(results)
     summary = pd.read_csv(root / "comparison" / "summary.csv")
     systems = list(dict.fromkeys(summary.mooring_system))
@@ -100,6 +131,13 @@ def main(results: str = "results") -> None:
             )
         )
     )
+    if rest:
+        if len(rest) != 2 or rest[0] != "--against":
+            raise SystemExit("usage: paper_results.py [results] [--against OTHER_RESULTS]")
+        other = Path(rest[1])
+        old_rec = read_yaml(other / "comparison" / "recommendation.yaml")
+        print(f"\n### Against {other} (recommended there: {old_rec.get('recommended')})\n")
+        print(changes_table(root, other))
 
 
 if __name__ == "__main__":
