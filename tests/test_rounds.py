@@ -83,7 +83,8 @@ def test_mda_budget_is_the_rest_of_n_train():
 @pytest.mark.parametrize(("k", "n", "ok"), [(1, 3, True), (3, 3, True), (4, 3, False), (1, 12, False), (0, 50, True)])
 def test_budget_refused_at_config_time(tiny_config, k, n, ok):
     cfg = tiny_config
-    assert cfg["selection"]["n_train"] == 12
+    cfg["selection"]["n_train"] = 12
+    cfg["lifecycle"]["replicates"]["states"] = 0  # the rounds' budget alone (test_replicates: both)
     cfg["lifecycle"]["adaptive"].update(rounds=k, per_round=n)
     if ok:
         check_cross_keys(cfg, "tiny.yaml")
@@ -291,7 +292,7 @@ def test_rounds_end_to_end(study):
     assert (k, n) == (1, 3)
     cases = mio.open_zarr(study / "results/selection/cases.zarr")
     role = np.array([str(r) for r in cases["role"].values])
-    n_train = 12
+    n_train = 12  # training states fitted: 9 MDA + 3 (tiny.yaml's other 2 simulations are seed replicates)
     assert (role == "train").sum() == n_train - k * n and cases.attrs["n_train"] == n_train - k * n
     mda_h = set(cases["hindcast_index"].values[role == "train"].tolist())
     val_h = set(cases["hindcast_index"].values[role == "validate"].tolist())

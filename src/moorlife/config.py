@@ -151,7 +151,8 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
       period holds at least ``selection.n_train + selection.n_validate`` hours; a file source
       names ``hindcast.path``; the sensitivity sea state is below the breaking steepness.
     * ``lifecycle.adaptive.rounds`` x ``per_round`` is below ``selection.n_train`` (the total of
-      training simulations, of which maximum dissimilarity picks the rest).
+      training simulations, of which maximum dissimilarity picks the rest), and so is that plus
+      ``lifecycle.replicates.states`` x ``seeds``.
     * ``simulation.dt`` resolves the shortest wave period ``2 pi / hydro.omega.max`` with
       :data:`STEPS_PER_PERIOD` steps; ``simulation.kinematics_dt``, as the simulator rounds it
       (to a whole number of steps, at least one), samples that period
@@ -198,6 +199,20 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
             f"states reach 'selection.n_train' = {n_tr}, the total of training simulations: maximum dissimilarity "
             "would pick none (rounds x per_round must be below n_train)"
         )
+    rs, rk = _get(cfg, "lifecycle.replicates.states"), _get(cfg, "lifecycle.replicates.seeds")
+    if all(isinstance(v, int) for v in (n_tr, k, n, rs, rk)) and rs > 0:
+        n_mda = n_tr - (k * n if k > 0 else 0) - rs * rk
+        if n_mda <= 0:
+            fail(
+                f"config keys 'lifecycle.replicates.states' = {rs} x 'lifecycle.replicates.seeds' = {rk} = {rs * rk} "
+                f"replicate simulations (with {k * n if k > 0 else 0} adaptive states) reach 'selection.n_train' = "
+                f"{n_tr}, the total of training simulations: maximum dissimilarity would pick none"
+            )
+        elif rs > n_mda + (k * n if k > 0 else 0):
+            fail(
+                f"config key 'lifecycle.replicates.states' = {rs} exceeds the {n_mda + (k * n if k > 0 else 0)} "
+                "training states there are to replicate"
+            )
     if _get(cfg, "hindcast.source") == "file" and not _get(cfg, "hindcast.path"):
         fail("config key 'hindcast.path' = None: a path is required when 'hindcast.source' is 'file'")
     if _get(cfg, "hydro.source") == "wamit" and not _get(cfg, "hydro.wamit_prefix"):

@@ -39,10 +39,15 @@ SEEDS = ["results/sensitivity/seeds.zarr"] if SENS_MS in MS_IDS else []
 
 
 # Adaptive selection (rounds.smk): rounds 1..k per system, numbered at parse time. MDA picks
-# selection.n_train - k x per_round states (the budget is checked by validate_config).
+# selection.n_train - k x per_round - states x seeds (the budget is checked by validate_config).
 ADAPTIVE = config["lifecycle"]["adaptive"]
 ROUNDS = list(range(1, ADAPTIVE["rounds"] + 1))
-N_MDA = config["selection"]["n_train"] - len(ROUNDS) * ADAPTIVE["per_round"]
+# Seed replicates (replicates.smk): lifecycle.replicates.seeds more records of .states states.
+REPLICATES = config["lifecycle"]["replicates"]
+REPLICATE_SEEDS = list(range(1, REPLICATES["seeds"] + 1)) if REPLICATES["states"] else []
+N_MDA = (
+    config["selection"]["n_train"] - len(ROUNDS) * ADAPTIVE["per_round"] - len(REPLICATE_SEEDS) * REPLICATES["states"]
+)
 
 
 def earlier_rounds(kind):

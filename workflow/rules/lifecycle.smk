@@ -1,7 +1,8 @@
 # Stage 'lifecycle': rebuild every output of the simulated sea states for every hindcast hour
 # with Gaussian RBF interpolation, validate it on the states kept aside, and sum the hourly
 # damage over the hindcast (paper sections 3.4-3.5, methodology step 6). One job per system;
-# the training states are the MDA states of cases.zarr and the system's adaptive rounds.
+# the training states are the MDA states of cases.zarr and the system's adaptive rounds, with
+# the mean of the seed replicates' records where there are any.
 
 
 rule lifecycle:
@@ -12,6 +13,7 @@ rule lifecycle:
         platform_cfg=config["platform"],
         rounds=expand("results/{{ms}}/rounds/picks_{r}.zarr", r=ROUNDS),
         round_simulations=expand("results/{{ms}}/rounds/simulations_{r}.zarr", r=ROUNDS),
+        replicates=expand("results/{{ms}}/replicates/simulations_{j}.zarr", j=REPLICATE_SEEDS),
     output:
         store=directory("results/{ms}/lifecycle.zarr"),
     log:

@@ -14,7 +14,7 @@ rule selection:
     resources:
         mem_mb=1000,
     params:
-        n_train=N_MDA,  # selection.n_train less the adaptive rounds' states (common.smk)
+        n_train=N_MDA,  # selection.n_train less the rounds' and the replicates' states (common.smk)
         n_validate=config["selection"]["n_validate"],
         rule=config["selection"]["validation_rule"],
         seed=config["seed"],

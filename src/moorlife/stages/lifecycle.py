@@ -13,6 +13,7 @@ import xarray as xr
 from moorlife import lifecycle as lc_mod
 from moorlife import names
 from moorlife.io import open_zarr, save_figure, write_zarr
+from moorlife.selection.replicates import average_replicates
 from moorlife.selection.rounds import annotate_lifecycle
 from moorlife.settings import fill_section
 from moorlife.stages import logged, thrust_for
@@ -35,6 +36,7 @@ def run(
     platform_cfg: PathLike | None = None,
     rounds: Sequence[PathLike] = (),
     round_simulations: Sequence[PathLike] = (),
+    replicates: Sequence[PathLike] = (),
     chunk_rows: int | None = None,
     threads: int | None = None,
     log: PathLike | None = None,
@@ -75,6 +77,13 @@ def run(
         settings = lc_mod.rbf_settings(rbf_cfg, source="config.yaml")
         thrust = thrust_for(settings, platform_cfg)
         cs, sims = merged(cases, simulations, rounds, round_simulations)
+        if replicates:
+            sims = average_replicates(sims, [open_zarr(p) for p in replicates])
+            logger.info(
+                "seed replicates: %d records of each of the cases %s averaged",
+                1 + len(replicates),
+                sims["case"].values[sims["n_records"].values > 1].tolist(),
+            )
         ds = lc_mod.reconstruct_lifecycle(
             open_zarr(hindcast),
             cs,
@@ -92,6 +101,16 @@ def run(
                 ds.attrs["n_train"] - ds.attrs["n_train_mda"],
                 len(rounds),
             )
+        if replicates:
+            rec = sims["n_records"].sel(case=ds["train"].values).values
+            ds = ds.assign(
+                train_records=(
+                    "train",
+                    rec,
+                    {"units": "1", "long_name": "simulated records averaged (seed replicates)"},
+                )
+            )
+            ds.attrs["replicate_seeds"] = len(replicates)
         for k in ("validation_r", "validation_rmse"):
             if k in ds:
                 logger.info(
