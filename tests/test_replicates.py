@@ -13,6 +13,7 @@ from moorlife import lifecycle, names
 from moorlife.config import ConfigError, check_cross_keys
 from moorlife.selection import replicates as rep
 from moorlife.selection import rounds
+from moorlife.stages.rounds import merged
 
 SETTINGS = lifecycle.RBFSettings.from_config({"outputs": ["surge_mpm", "tension_mpm", "damage_sn"]})
 
@@ -168,7 +169,13 @@ def test_replicates_end_to_end(study):
     assert cases.attrs["n_train"] == n_mda
     for ms in ("MS1", "MS3"):
         picks = mio.open_zarr(study / f"results/{ms}/replicates/picks.zarr")
-        sims = mio.open_zarr(study / f"results/{ms}/simulations.zarr")
+        # a replicated state may be one of the round's picks: the training records merged
+        _, sims = merged(
+            study / "results/selection/cases.zarr",
+            study / f"results/{ms}/simulations.zarr",
+            [study / f"results/{ms}/rounds/picks_{r}.zarr" for r in range(1, ad["rounds"] + 1)],
+            [study / f"results/{ms}/rounds/simulations_{r}.zarr" for r in range(1, ad["rounds"] + 1)],
+        )
         r1 = mio.open_zarr(study / f"results/{ms}/replicates/simulations_1.zarr")
         lc = mio.open_zarr(study / f"results/{ms}/lifecycle.zarr", load=False)
         ids = picks["case"].values
