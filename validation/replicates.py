@@ -1,0 +1,227 @@
+"""Seed replicates of the training states that hold the damage (issue 22, the storm peak).
+
+    python validation/replicates.py --results results --system MS6 --top 20 --seeds 5 \\
+        --overlay validation/overlays/rest600.yaml > tables.md
+
+The truth year of MS6 is overestimated by 8-18 % (``validation/truth.md``), by the hours of
+its largest storm, all reconstructed from one training record (the MDA's first state, the
+hindcast's largest Hs). This harness asks how much of that is the seed noise of the few
+training records that govern the damage, and whether averaging seed replicates of them, at
+the same cost, removes it:
+
+1. fit the paper's reconstruction on the study's training states, predict every hindcast
+   hour, and give each training state the damage of the hours whose nearest training state it
+   is (its *damage mass*, per line, as a share of the line's life-cycle damage); rank the states
+   by their largest share over the lines;
+2. simulate ``--seeds`` replicates of the ``--top`` states (the simulate stage itself, random
+   streams ``replicate1`` .. ``replicateK``: phases independent of every other simulation),
+   into ``--work`` (reused when present);
+3. print the seed scatter of the damage at those states (the CV of one record, over the
+   1 + K records; the study's record over their mean), and every ``--grid`` variant against
+   the validation states and the truth window (:func:`validation.reconstruction.measure`, the
+   harness of ``validation/reconstruction.md``). A variant ``N_MDA:TOP:SEEDS`` fits the first
+   ``N_MDA`` MDA states (maximum dissimilarity is greedy: exactly an MDA of that size) with the
+   outputs of its ``TOP`` states by damage mass (or of one state, ``caseID``) replaced by the
+   mean of their study record and ``SEEDS`` replicates: ``N_MDA + TOP x SEEDS`` simulations.
+   ``1000:0:0`` is the paper's method; ``960:20:2`` costs the same.
+
+``--overlay`` sets the simulation settings of the replicates; they must be the study's (the
+year of ``validation/truth.md`` ran from rest with a 600 s transient).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+import xarray as xr
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import reconstruction as harness  # noqa: E402
+
+from moorlife import lifecycle  # noqa: E402
+from moorlife.io import open_zarr, write_zarr  # noqa: E402
+from moorlife.selection import replicates as rep  # noqa: E402
+
+DIM = "case"
+
+
+def damage_mass(cfg: dict[str, Any], cases: xr.Dataset, sims: xr.Dataset, hindcast: xr.Dataset) -> pd.DataFrame:
+    """Every training state's share of each line's life-cycle damage, largest first: the ranking
+    of ``lifecycle.replicates`` (:func:`moorlife.selection.replicates.pick_replicates`)."""
+    from moorlife.stages import thrust_for
+
+    settings = lifecycle.rbf_settings(cfg["lifecycle"]["rbf"])
+    n_train = int((cases["role"].values.astype(object).astype(str) == "train").sum())
+    ds = rep.pick_replicates(
+        hindcast,
+        cases,
+        sims,
+        settings=settings,
+        n=n_train,
+        seeds=1,
+        thrust=thrust_for(settings, harness.ROOT / cfg["platform"]),
+    )
+    out = ds["damage_share"].to_pandas()
+    out.index = ds[DIM].values
+    out["largest"] = out.max(axis=1)
+    out["hours"] = ds["cell_hours"].values
+    return out
+
+
+def simulate_replicates(cfg: dict[str, Any], ms: str, results: Path, work: Path, ids: np.ndarray, seeds: int) -> list:
+    """``seeds`` stores of the cases ``ids``, random streams ``replicate1`` .. (reused when present)."""
+    from moorlife.stages import result_settings
+    from moorlife.stages import simulate as sim_stage
+    from moorlife.stages.check import check_study
+
+    work.mkdir(parents=True, exist_ok=True)
+    cases_path = work / "cases.zarr"
+    sub = open_zarr(results / "selection" / "cases.zarr").sel({DIM: np.sort(ids)})
+    if cases_path.exists():
+        have = open_zarr(cases_path)[DIM].values
+        if not np.array_equal(have, sub[DIM].values):
+            raise ValueError(f"{cases_path}: holds other cases than --top asks; use another --work")
+    else:
+        write_zarr(sub, cases_path)
+    row = check_study(cfg, harness._schema()).mooring.loc[ms]
+    row = {k: (v.item() if hasattr(v, "item") else v) for k, v in row.items()}
+    out = []
+    for j in range(1, seeds + 1):
+        store = work / f"replicate{j}.zarr"
+        if not store.exists():
+            sim_stage.run(
+                cases=cases_path,
+                platform=results / "hydro" / "platform.nc",
+                platform_cfg=harness.ROOT / cfg["platform"],
+                store=store,
+                dim=DIM,
+                ms=ms,
+                row=row,
+                seed=cfg["seed"],
+                simulation=result_settings(cfg, "simulation"),
+                mooring=cfg.get("mooring", {}),
+                fatigue=cfg["fatigue"],
+                statistics=cfg.get("statistics", {}),
+                stream=f"replicate{j}",
+                threads=1,
+                log=work / f"replicate{j}.log",
+            )
+        out.append(open_zarr(store))
+    return out
+
+
+def averaged(sims: xr.Dataset, reps: list[xr.Dataset], ids: np.ndarray) -> xr.Dataset:
+    """``sims`` with the outputs of ``ids`` the mean of their records (the package's own mean)."""
+    return rep.average_replicates(sims, [r.sel({DIM: np.asarray(ids)}) for r in reps])
+
+
+def seed_scatter(sims: xr.Dataset, reps: list[xr.Dataset], ids: np.ndarray) -> pd.DataFrame:
+    """Per state and line: the study's record over the mean of all records, and the records' CV."""
+    rows = []
+    for line in sims["line"].values.astype(object).astype(str):
+        recs = np.stack(
+            [sims["damage_sn"].sel({DIM: ids, "line": line}).values]
+            + [r["damage_sn"].sel({DIM: ids, "line": line}).values for r in reps]
+        )
+        mean = recs.mean(axis=0)
+        for i, c in enumerate(ids):
+            rows.append(
+                {
+                    "case": int(c),
+                    "line": line,
+                    "study_over_mean": recs[0, i] / mean[i],
+                    "cv_one_record": recs[:, i].std(ddof=1) / mean[i],
+                }
+            )
+    return pd.DataFrame(rows)
+
+
+def parse_grid(spec: str) -> list[tuple[int, str, int]]:
+    """``N_MDA:TOP:SEEDS,...``; ``TOP`` is a count of states by damage mass or ``caseID`` (one state)."""
+    out = []
+    for item in spec.split(","):
+        n, top, k = item.split(":")
+        if not (top.isdigit() or (top.startswith("case") and top[4:].isdigit())):
+            raise ValueError(f"--grid: {item!r}: TOP must be a number or caseID")
+        out.append((int(n), top, int(k)))
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--results", type=Path, default=harness.ROOT / "results")
+    p.add_argument("--system", default="MS6")
+    p.add_argument("--top", type=int, default=20, help="states replicated (of the fits on 1,000 and 900 states)")
+    p.add_argument("--seeds", type=int, default=5)
+    p.add_argument(
+        "--grid",
+        default="1000:0:0,1000:20:5,1000:case0:5,1000:10:5,1000:20:2,1000:20:1,900:0:0,900:20:5,950:0:0,960:20:2,980:20:1",
+        help="variants N_MDA:TOP:SEEDS (first N_MDA MDA states; TOP states by damage mass of their fit, or caseID; "
+        "their first SEEDS replicates averaged in)",
+    )
+    p.add_argument("--overlay", action="append", default=[], help="overlays of the study's simulation settings")
+    p.add_argument("--work", type=Path, default=harness.ROOT / "results" / "validation_replicates")
+    a = p.parse_args(argv)
+    cfg = harness.study(a.overlay)
+    ms = a.system
+    stores = harness.load(a.results, ms)
+    if stores is None:
+        raise SystemExit(f"{ms}: no simulations under {a.results}")
+    cases, sims = stores["cases"], stores["sims"]
+    role = cases["role"].values.astype(object).astype(str)
+    grid = parse_grid(a.grid)
+    prefixes = {}
+    for n in sorted({g[0] for g in grid} | {1000, 900}):
+        keep = (role == "validate") | ((role == "train") & (np.arange(role.size) < n))
+        cs = cases.isel({DIM: keep})
+        sm = sims.sel({DIM: cs[DIM].values})
+        prefixes[n] = (cs, sm, damage_mass(cfg, cs, sm, stores["hindcast"]))
+    ids = np.union1d(prefixes[1000][2].index.values[: a.top], prefixes[900][2].index.values[: a.top])
+    mass = prefixes[1000][2]
+    print(
+        f"{ms}: the top {a.top} of 1,000 training states hold {100 * mass['largest'].iloc[: a.top].sum():.1f} % "
+        f"(largest share summed); {ids.size} states simulated x {a.seeds} seeds",
+        file=sys.stderr,
+    )
+    print(f"## {ms}: damage mass of the top training states (share of the line's life-cycle damage, %)\n")
+    head = mass.iloc[: a.top]
+    print((100 * head.drop(columns=["largest", "hours"])).round(2).assign(hours=head["hours"]).to_markdown())
+    reps = simulate_replicates(cfg, ms, a.results, a.work / ms, ids, a.seeds)
+
+    sc = seed_scatter(sims, reps, ids)
+    table = sc.pivot(index="case", columns="line", values="cv_one_record").round(3)
+    ratio = sc.pivot(index="case", columns="line", values="study_over_mean").round(2)
+    c = cases.sel({DIM: table.index.values})
+    table = table.join(ratio, rsuffix=" study/mean").assign(
+        hs=c["hs"].values.round(2), wind_speed=c["wind_speed"].values.round(1), tp=c["tp"].values.round(1)
+    )
+    print(
+        f"\n## Seed scatter of the damage (S-N) at the replicated states: CV of one record over {a.seeds + 1} "
+        "records, and the study's record over their mean\n"
+    )
+    print(table.sort_values(table.columns[1], ascending=False).to_markdown())
+
+    res, names_ = {}, []
+    for n, top, k in grid:
+        cs, sm, m = prefixes[n]
+        chosen = np.array([int(top[4:])]) if top.startswith("case") else m.index.values[: int(top)]
+        missing = np.setdiff1d(chosen, reps[0][DIM].values) if k else np.array([], dtype=int)
+        if missing.size:
+            raise SystemExit(f"--grid {n}:{top}:{k}: cases {missing.tolist()} have no replicates (raise --top)")
+        name = f"{n} MDA" + (f" + {top} x {k} seeds" if k else "")
+        names_.append(name)
+        sm = averaged(sm, reps[:k], chosen) if k else sm
+        res[(ms, name)] = harness.measure(cfg, ms, a.results, a.work / ms / "fit", {**stores, "cases": cs, "sims": sm})
+        print(f"{name}: done", file=sys.stderr)
+    print()
+    print(harness.report(res, names_))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
