@@ -148,6 +148,14 @@ def test_budget_refused_at_config_time(tiny_config):
         check_cross_keys(cfg, "tiny.yaml")
 
 
+def test_replicates_without_the_damage_output_refused_at_config_time(tiny_config):
+    cfg = tiny_config
+    cfg["lifecycle"]["replicates"].update(states=2, seeds=1)
+    cfg["lifecycle"]["rbf"]["outputs"] = ["surge_mpm", "damage_tn"]
+    with pytest.raises(ConfigError, match=r"'lifecycle\.rbf\.outputs' = \['surge_mpm', 'damage_tn'\] does not rebuild"):
+        check_cross_keys(cfg, "tiny.yaml")
+
+
 def test_default_study_replicates_nothing(study_config):
     r = study_config["lifecycle"]["replicates"]
     assert r["states"] == 0, "states: 0 keeps the paper's method (one record per training state)"

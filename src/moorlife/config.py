@@ -152,7 +152,8 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
       names ``hindcast.path``; the sensitivity sea state is below the breaking steepness.
     * ``lifecycle.adaptive.rounds`` x ``per_round`` is below ``selection.n_train`` (the total of
       training simulations, of which maximum dissimilarity picks the rest), and so is that plus
-      ``lifecycle.replicates.states`` x ``seeds``.
+      ``lifecycle.replicates.states`` x ``seeds``; replicates need ``damage_sn`` among
+      ``lifecycle.rbf.outputs`` (their ranking).
     * ``simulation.dt`` resolves the shortest wave period ``2 pi / hydro.omega.max`` with
       :data:`STEPS_PER_PERIOD` steps; ``simulation.kinematics_dt``, as the simulator rounds it
       (to a whole number of steps, at least one), samples that period
@@ -200,6 +201,7 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
             "would pick none (rounds x per_round must be below n_train)"
         )
     rs, rk = _get(cfg, "lifecycle.replicates.states"), _get(cfg, "lifecycle.replicates.seeds")
+    outs = _get(cfg, "lifecycle.rbf.outputs")
     if all(isinstance(v, int) for v in (n_tr, k, n, rs, rk)) and rs > 0:
         n_mda = n_tr - (k * n if k > 0 else 0) - rs * rk
         if n_mda <= 0:
@@ -207,6 +209,11 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
                 f"config keys 'lifecycle.replicates.states' = {rs} x 'lifecycle.replicates.seeds' = {rk} = {rs * rk} "
                 f"replicate simulations (with {k * n if k > 0 else 0} adaptive states) reach 'selection.n_train' = "
                 f"{n_tr}, the total of training simulations: maximum dissimilarity would pick none"
+            )
+        elif isinstance(outs, list) and "damage_sn" not in outs:
+            fail(
+                f"config key 'lifecycle.replicates.states' = {rs} ranks the training states by their S-N damage, but "
+                f"'lifecycle.rbf.outputs' = {outs!r} does not rebuild 'damage_sn'"
             )
         elif rs > n_mda + (k * n if k > 0 else 0):
             fail(
