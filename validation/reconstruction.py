@@ -63,9 +63,7 @@ def adaptive_training(
     """The MDA prefix of the study plus the adaptive rounds of ``cfg`` (simulated into ``work``)."""
     from moorlife import lifecycle
     from moorlife.selection import rounds as rounds_mod
-    from moorlife.stages import result_settings, thrust_for
-    from moorlife.stages import simulate as sim_stage
-    from moorlife.stages.check import check_study
+    from moorlife.stages import thrust_for
 
     ad = cfg["lifecycle"]["adaptive"]
     n_mda = rounds_mod.mda_budget(cfg["selection"]["n_train"], ad["rounds"], ad["per_round"])
@@ -77,8 +75,6 @@ def adaptive_training(
     sm = sims.sel(case=cs["case"].values)
     settings = lifecycle.rbf_settings(cfg["lifecycle"]["rbf"])
     thrust = thrust_for(settings, ROOT / cfg["platform"])
-    row = check_study(cfg, _schema()).mooring.loc[ms]
-    row = {k: (v.item() if hasattr(v, "item") else v) for k, v in row.items()}
     picks, rsims = [], []
     for r in range(1, ad["rounds"] + 1):
         pdir = work / "picks"
@@ -98,19 +94,12 @@ def adaptive_training(
             pdir.mkdir(parents=True, exist_ok=True)
             write_zarr(ds, ppath)
         if not spath.exists():
-            sim_stage.run(
-                cases=ppath,
-                platform=results / "hydro" / "platform.nc",
-                platform_cfg=ROOT / cfg["platform"],
-                store=spath,
-                dim="case",
-                ms=ms,
-                row=row,
-                seed=cfg["seed"],
-                simulation=result_settings(cfg, "simulation"),
-                mooring=cfg.get("mooring", {}),
-                fatigue=cfg["fatigue"],
-                statistics=cfg.get("statistics", {}),
+            simulate_cases(
+                cfg,
+                ms,
+                results,
+                ppath,
+                spath,
                 stream=rounds_mod.ROUND_STREAM,
                 threads=2,
                 log=work / f"simulate_{r}.log",
@@ -118,6 +107,35 @@ def adaptive_training(
         picks.append(_open(ppath))
         rsims.append(_open(spath))
     return rounds_mod.with_rounds(cs, picks), rounds_mod.with_rounds(sm, rsims)
+
+
+def simulate_cases(
+    cfg: dict[str, Any], ms: str, results: Path, cases: Path, store: Path, *, stream: str, threads: int, log: Path
+) -> None:
+    """The simulate stage on the sea states of ``cases`` with the study's settings (``cfg``),
+    the platform of ``results`` and the random ``stream``, into ``store``."""
+    from moorlife.stages import result_settings
+    from moorlife.stages import simulate as sim_stage
+    from moorlife.stages.check import check_study
+
+    row = check_study(cfg, _schema()).mooring.loc[ms]
+    sim_stage.run(
+        cases=cases,
+        platform=results / "hydro" / "platform.nc",
+        platform_cfg=ROOT / cfg["platform"],
+        store=store,
+        dim="case",
+        ms=ms,
+        row={k: (v.item() if hasattr(v, "item") else v) for k, v in row.items()},
+        seed=cfg["seed"],
+        simulation=result_settings(cfg, "simulation"),
+        mooring=cfg.get("mooring", {}),
+        fatigue=cfg["fatigue"],
+        statistics=cfg.get("statistics", {}),
+        stream=stream,
+        threads=threads,
+        log=log,
+    )
 
 
 def _schema() -> dict[str, Any]:

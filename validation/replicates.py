@@ -75,9 +75,6 @@ def damage_mass(cfg: dict[str, Any], cases: xr.Dataset, sims: xr.Dataset, hindca
 
 def simulate_replicates(cfg: dict[str, Any], ms: str, results: Path, work: Path, ids: np.ndarray, seeds: int) -> list:
     """``seeds`` stores of the cases ``ids``, random streams ``replicate1`` .. (reused when present)."""
-    from moorlife.stages import result_settings
-    from moorlife.stages import simulate as sim_stage
-    from moorlife.stages.check import check_study
 
     work.mkdir(parents=True, exist_ok=True)
     cases_path = work / "cases.zarr"
@@ -88,26 +85,17 @@ def simulate_replicates(cfg: dict[str, Any], ms: str, results: Path, work: Path,
             raise ValueError(f"{cases_path}: holds other cases than --top asks; use another --work")
     else:
         write_zarr(sub, cases_path)
-    row = check_study(cfg, harness._schema()).mooring.loc[ms]
-    row = {k: (v.item() if hasattr(v, "item") else v) for k, v in row.items()}
     out = []
     for j in range(1, seeds + 1):
         store = work / f"replicate{j}.zarr"
         if not store.exists():
-            sim_stage.run(
-                cases=cases_path,
-                platform=results / "hydro" / "platform.nc",
-                platform_cfg=harness.ROOT / cfg["platform"],
-                store=store,
-                dim=DIM,
-                ms=ms,
-                row=row,
-                seed=cfg["seed"],
-                simulation=result_settings(cfg, "simulation"),
-                mooring=cfg.get("mooring", {}),
-                fatigue=cfg["fatigue"],
-                statistics=cfg.get("statistics", {}),
-                stream=f"replicate{j}",
+            harness.simulate_cases(
+                cfg,
+                ms,
+                results,
+                cases_path,
+                store,
+                stream=rep.replicate_stream(j),
                 threads=1,
                 log=work / f"replicate{j}.log",
             )

@@ -203,11 +203,12 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
     rs, rk = _get(cfg, "lifecycle.replicates.states"), _get(cfg, "lifecycle.replicates.seeds")
     outs = _get(cfg, "lifecycle.rbf.outputs")
     if all(isinstance(v, int) for v in (n_tr, k, n, rs, rk)) and rs > 0:
-        n_mda = n_tr - (k * n if k > 0 else 0) - rs * rk
+        adaptive = k * n if k > 0 else 0
+        n_mda = n_tr - adaptive - rs * rk
         if n_mda <= 0:
             fail(
                 f"config keys 'lifecycle.replicates.states' = {rs} x 'lifecycle.replicates.seeds' = {rk} = {rs * rk} "
-                f"replicate simulations (with {k * n if k > 0 else 0} adaptive states) reach 'selection.n_train' = "
+                f"replicate simulations (with {adaptive} adaptive states) reach 'selection.n_train' = "
                 f"{n_tr}, the total of training simulations: maximum dissimilarity would pick none"
             )
         elif isinstance(outs, list) and "damage_sn" not in outs:
@@ -215,9 +216,9 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
                 f"config key 'lifecycle.replicates.states' = {rs} ranks the training states by their S-N damage, but "
                 f"'lifecycle.rbf.outputs' = {outs!r} does not rebuild 'damage_sn'"
             )
-        elif rs > n_mda + (k * n if k > 0 else 0):
+        elif rs > n_mda + adaptive:
             fail(
-                f"config key 'lifecycle.replicates.states' = {rs} exceeds the {n_mda + (k * n if k > 0 else 0)} "
+                f"config key 'lifecycle.replicates.states' = {rs} exceeds the {n_mda + adaptive} "
                 "training states there are to replicate"
             )
     if _get(cfg, "hindcast.source") == "file" and not _get(cfg, "hindcast.path"):

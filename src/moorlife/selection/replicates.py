@@ -37,6 +37,7 @@ import xarray as xr
 
 from moorlife import lifecycle, names, rbf
 from moorlife.selection.adapters import hindcast_points
+from moorlife.selection.rounds import fit_training
 
 __all__ = [
     "REPLICATE_STREAM",
@@ -135,28 +136,16 @@ def pick_replicates(
         ``replicate_seeds``, ``n_fit`` and the selection's normalisation.
     """
     dim = names.CASE
-    common = np.intersect1d(cases[dim].values, sims[dim].values)
-    cs, sm = cases.sel({dim: common}), sims.sel({dim: common})
-    train = np.array([str(v) for v in cs["role"].values]) == "train"
-    cols = lifecycle.output_columns(sm, dim, settings.outputs)
+    model, train_ids, cols, _ = fit_training(cases, sims, settings=settings, thrust=thrust, context="replicates")
     dmg = [j for j, (v, line) in enumerate(cols) if v == "damage_sn" and line is not None]
     if not dmg:
         raise ValueError("lifecycle.replicates: the reconstruction has no damage_sn output (lifecycle.rbf.outputs)")
-    y = lifecycle.stack_outputs(sm, dim, cols)[train]
-    if not np.isfinite(y).all():
-        i, j = np.argwhere(~np.isfinite(y))[0]
-        raise ValueError(
-            f"simulations: {lifecycle._label(cols[j])} is not finite for case {int(common[train][i])} ({y[i, j]!r})"
-        )
-    x = lifecycle._points(cs, dim)[train]
-    lo, span = lifecycle._selection_scaling(cases)
-    model = lifecycle.fit_outputs(x, y, cols, settings, lo=lo, span=span, thrust=thrust)
     hp = hindcast_points(hindcast, source="hindcast")
     damage = lifecycle.predict_outputs(model, hp, chunk_rows=settings.chunk_rows)[:, dmg]
     _, nearest = rbf.nearest_centre(model, hp)
-    shares = damage_shares(nearest, np.maximum(damage, 0.0), x.shape[0])
+    shares = damage_shares(nearest, np.maximum(damage, 0.0), train_ids.size)
     order = largest_shares(shares, n)
-    ids = common[train][order]
+    ids = train_ids[order]
     out = cases.sel({dim: ids})
     out = out.assign(
         damage_share=(
@@ -167,7 +156,7 @@ def pick_replicates(
         pick_order=(dim, np.arange(ids.size, dtype=np.int64), {"units": "1", "long_name": "order of the pick"}),
         cell_hours=(
             dim,
-            np.bincount(nearest, minlength=x.shape[0])[order].astype(np.int64),
+            np.bincount(nearest, minlength=train_ids.size)[order].astype(np.int64),
             {"units": "1", "long_name": "hindcast hours whose nearest training state it is"},
         ),
     ).assign_coords({names.LINE: [cols[j][1] for j in dmg]})
@@ -176,13 +165,13 @@ def pick_replicates(
             "selection_method": "seed replicates: the training states of the largest share of the life-cycle "
             "damage in their cells (moorlife.selection.replicates)",
             "replicate_seeds": int(seeds),
-            "n_fit": int(train.sum()),
+            "n_fit": int(train_ids.size),
         }
     )
     log.info(
         "replicates: %d of %d training states hold %.1f %% of the damage (largest line share summed); cases %s",
         ids.size,
-        int(train.sum()),
+        train_ids.size,
         100 * float(np.max(shares[order], axis=1).sum()),
         ids.tolist(),
     )

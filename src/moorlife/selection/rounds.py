@@ -41,6 +41,7 @@ __all__ = [
     "mda_budget",
     "round_case_ids",
     "pick_hours",
+    "fit_training",
     "with_rounds",
     "pick_round",
     "annotate_lifecycle",
@@ -174,6 +175,58 @@ def with_rounds(base: xr.Dataset, rounds: Sequence[xr.Dataset]) -> xr.Dataset:
     return ds
 
 
+def fit_training(
+    cases: xr.Dataset,
+    sims: xr.Dataset,
+    *,
+    settings: lifecycle.RBFSettings,
+    thrust: lifecycle.ThrustCurve | None = None,
+    min_train: int = 0,
+    context: str = "fit",
+) -> tuple[lifecycle.Reconstruction, np.ndarray, list[tuple[str, str | None]], np.ndarray]:
+    """The reconstruction of the training states simulated so far (the fit of a round's or the
+    replicates' picks, as the ``lifecycle`` stage fits).
+
+    Only the cases of both stores with ``role == "train"`` are fitted; the selection's
+    normalisation comes from ``cases``.
+
+    Returns
+    -------
+    model : moorlife.lifecycle.Reconstruction
+    train_ids : numpy.ndarray
+        The case ids fitted, in the order of the model's centres.
+    cols : list of (variable, line)
+        The output columns (:func:`moorlife.lifecycle.output_columns`).
+    y : numpy.ndarray, shape (len(train_ids), len(cols))
+        Their simulated values.
+
+    Raises
+    ------
+    ValueError
+        If fewer than ``min_train`` training cases are simulated (``context`` names the caller),
+        or an output is not finite.
+    """
+    dim = names.CASE
+    common = np.intersect1d(cases[dim].values, sims[dim].values)
+    cs, sm = cases.sel({dim: common}), sims.sel({dim: common})
+    train = np.array([str(v) for v in cs["role"].values]) == "train"
+    if train.sum() < min_train:
+        raise ValueError(
+            f"{context}: only {int(train.sum())} training cases are simulated; the RBF needs at least {min_train}"
+        )
+    cols = lifecycle.output_columns(sm, dim, settings.outputs)
+    y = lifecycle.stack_outputs(sm, dim, cols)[train]
+    if not np.isfinite(y).all():
+        i, j = np.argwhere(~np.isfinite(y))[0]
+        raise ValueError(
+            f"simulations: {lifecycle._label(cols[j])} is not finite for case {int(common[train][i])} ({y[i, j]!r})"
+        )
+    x = lifecycle._points(cs, dim)[train]
+    lo, span = lifecycle._selection_scaling(cases)
+    model = lifecycle.fit_outputs(x, y, cols, settings, lo=lo, span=span, thrust=thrust)
+    return model, common[train], cols, y
+
+
 def pick_round(
     hindcast: xr.Dataset,
     cases: xr.Dataset,
@@ -209,26 +262,9 @@ def pick_round(
         ``error_indicator`` and ``nearest_train_distance`` before the round; the selection's
         normalisation attributes and ``round``, ``n_fit``.
     """
-    dim = names.CASE
-    common = np.intersect1d(cases[dim].values, sims[dim].values)
-    cs, sm = cases.sel({dim: common}), sims.sel({dim: common})
-    role = np.array([str(v) for v in cs["role"].values])
-    train = role == "train"
-    if train.sum() < MIN_TRAIN:
-        raise ValueError(
-            f"adaptive round {number}: only {int(train.sum())} training cases are simulated; the RBF needs at least "
-            f"{MIN_TRAIN}"
-        )
-    cols = lifecycle.output_columns(sm, dim, settings.outputs)
-    y = lifecycle.stack_outputs(sm, dim, cols)[train]
-    if not np.isfinite(y).all():
-        i, j = np.argwhere(~np.isfinite(y))[0]
-        raise ValueError(
-            f"simulations: {lifecycle._label(cols[j])} is not finite for case {int(common[train][i])} ({y[i, j]!r})"
-        )
-    x = lifecycle._points(cs, dim)[train]
-    lo, span = lifecycle._selection_scaling(cases)
-    model = lifecycle.fit_outputs(x, y, cols, settings, lo=lo, span=span, thrust=thrust)
+    model, train_ids, cols, y = fit_training(
+        cases, sims, settings=settings, thrust=thrust, min_train=MIN_TRAIN, context=f"adaptive round {number}"
+    )
     scale = np.std(y, axis=0)
     loo = lifecycle.loo_errors_in_units(model, y, cols)
 
@@ -241,13 +277,13 @@ def pick_round(
     log.info(
         "adaptive round %d: fitted on %d training states (%d outputs), picked %d hours; indicator %.3g .. %.3g",
         number,
-        int(train.sum()),
+        train_ids.size,
         len(cols),
         picks.size,
         float(ind.min()),
         float(ind.max()),
     )
-    return _picks_dataset(hindcast, hp, picks, ind, dist, cases.attrs, number, int(train.sum()))
+    return _picks_dataset(hindcast, hp, picks, ind, dist, cases.attrs, number, train_ids.size)
 
 
 def _picks_dataset(
