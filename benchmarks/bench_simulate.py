@@ -30,6 +30,7 @@ import numpy as np
 from moorlife import simulate as sim
 from moorlife.io import read_mooring_systems
 from moorlife.io.platform import read_platform_config
+from moorlife.simulate import integration
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -249,6 +250,15 @@ def main() -> None:
         for b in (1, args.batch):
             ours[kind, b] = time_ours(model, b, args.record, args.repeat)
             print(f"moorlife {kind:<12s} batch {b:2d}: {ours[kind, b]:7.3f} CPU-s/h   ({source})")
+    # the lines of a batch stepped together (mooring.lanes, the default) against the one-line
+    # reference step, in the same process on the same states (the same bits: tests/test_mooring_lanes.py)
+    integration.LANES = False
+    ref = time_ours(model, args.batch, args.record, args.repeat)
+    integration.LANES = True
+    print(
+        f"moorlife dynamic, one line at a time (reference step), batch {args.batch:2d}: {ref:7.3f} CPU-s/h; "
+        f"lanes / reference {ours['dynamic', args.batch] / ref:.3f}"
+    )
     md = time_moordyn(row, args.moordyn_seconds)
     print(f"MoorDyn 2 mooring alone (3 lines x 20 segments, dtM 1 ms): {md:7.2f} CPU-s/h")
     for b in (1, args.batch):

@@ -38,6 +38,15 @@ takes as they are, and the step updates them in place (``state.forces (B, L, 3)`
 
 They are the same computation as ``model.step`` (which calls them), bit for bit; the
 dynamic step raises ``FloatingPointError`` on a non-finite tension.
+
+The fast path of the dynamic step steps every line of a batch at once, the lines along the
+last axis of each array (:mod:`moorlife.mooring.lanes`, BDF2 once its history is started)::
+
+    lanes.pack(state, ls)                        # ls = lanes.lane_state(B * L, N)
+    lanes.step_lanes(ls, r_fair, v_fair, dt, nsub, model.model.params, work, forces, tension)
+    lanes.unpack(ls, state)
+
+It gives the bits of ``dynamic.step_lines``, which stays as its strict reference.
 """
 
 from __future__ import annotations
@@ -47,7 +56,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from moorlife.mooring import dynamic, quasistatic
+from moorlife.mooring import dynamic, lanes, quasistatic
 from moorlife.mooring.dynamic import DynamicMooring, DynamicState, LineKernel, line_model
 from moorlife.mooring.lines import (
     Layout,
@@ -91,6 +100,7 @@ __all__ = [
     "QuasiStaticMooring",
     "QuasiStaticState",
     "dynamic",
+    "lanes",
     "quasistatic",
 ]
 

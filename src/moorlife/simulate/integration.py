@@ -30,6 +30,10 @@ from moorlife.simulate.model import ModelInputs
 
 __all__ = ["Record", "integrate"]
 
+#: Step the dynamic lines of a batch together (``moorlife.mooring.lanes``, the same bits); False
+#: keeps the one-line reference step throughout (for the tests that compare the two).
+LANES = True
+
 
 # --------------------------------------------------------------------------------------
 # mooring adapters
@@ -73,8 +77,21 @@ def _run_compiled(moor: Any, mstate: Any, n: int, dt: float, records: tuple) -> 
     from moorlife import mooring as moor_pkg
 
     if type(moor) is moor_pkg.DynamicMooring:
+        from moorlife.mooring import lanes
+
+        nl = mstate.r.shape[0] * mstate.r.shape[1] if LANES else 0
+        N = moor.model.n_segments
         try:
-            _run_dynamic(n, float(dt), moor.substeps(dt), *records, mstate, moor.kernel)
+            _run_dynamic(
+                n,
+                float(dt),
+                moor.substeps(dt),
+                *records,
+                mstate,
+                moor.kernel,
+                lanes.lane_state(nl, N),
+                lanes.lane_work(nl, N),
+            )
         except FloatingPointError:
             raise FloatingPointError(
                 f"dynamic mooring ({moor.props.name}): non-finite fairlead tension; line state diverged (dt = {dt} s)"

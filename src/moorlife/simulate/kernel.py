@@ -17,6 +17,9 @@ import numba
 import numpy as np
 
 from moorlife.mooring.dynamic import step_lines as _step_dynamic_lines
+from moorlife.mooring.lanes import pack as _pack_lanes
+from moorlife.mooring.lanes import step_lanes as _step_lanes
+from moorlife.mooring.lanes import unpack as _unpack_lanes
 from moorlife.mooring.quasistatic import step_lines as _step_quasistatic_lines
 
 __all__ = ["rotation_matrix", "State", "Body", "Radiation", "Strips", "Rotor", "Excitation", "MooringLink", "Recorder"]
@@ -550,20 +553,45 @@ def _predict_fairleads(q, v, fair, dt, r_out, v_out):  # pragma: no cover - numb
 
 
 @numba.njit(cache=True)
-def _run_dynamic(n, dt, nsub, state, body, rad, strips, rotor, wave, rec, lines, kernel):  # pragma: no cover
+def _run_dynamic(
+    n, dt, nsub, state, body, rad, strips, rotor, wave, rec, lines, kernel, lanes, work
+):  # pragma: no cover
     """The whole record with dynamic lines, in one compiled loop (no per-step dispatch).
 
     Each step is exactly the Python loop of ``integrate``: predict the fairleads, advance the
     lines (the compiled step ``moorlife.mooring.dynamic.step_lines`` of the state ``lines``
     with the model's ``kernel``, ``nsub`` substeps), then :func:`_advance` the platform.
+
+    With the BDF2 scheme and ``lanes`` (a ``moorlife.mooring.lanes.LaneState`` of every line of
+    the batch; ``work`` its scratch), the first step is taken as above (it starts the BDF2
+    history), and the others by ``moorlife.mooring.lanes.step_lanes``: the same bits, every line
+    of the batch at once. Empty lanes (zero lines) keep the one-line step throughout.
     """
     moor = MooringLink(True, lines.forces, lines.tension)
+    fast = kernel.scheme == 1 and lanes.r.shape[2] > 0
     for j in range(n):
         _predict_fairleads(
             state.displacement, state.velocity, body.fairleads, dt, state.fairlead_position, state.fairlead_velocity
         )
-        _step_dynamic_lines(lines, state.fairlead_position, state.fairlead_velocity, dt, nsub, kernel)
+        if fast and j > 0:
+            _step_lanes(
+                lanes,
+                state.fairlead_position,
+                state.fairlead_velocity,
+                dt,
+                nsub,
+                kernel.params,
+                work,
+                lines.forces,
+                lines.tension,
+            )
+        else:
+            _step_dynamic_lines(lines, state.fairlead_position, state.fairlead_velocity, dt, nsub, kernel)
+            if fast:
+                _pack_lanes(lines, lanes)
         _advance(j, dt, state, body, rad, strips, rotor, wave, moor, rec)
+    if fast and n > 1:
+        _unpack_lanes(lanes, lines)
 
 
 @numba.njit(cache=True)
