@@ -203,6 +203,25 @@ def test_local_cluster_leaves_the_driver_environment_as_found(monkeypatch):
     assert {k: os.environ.get(k) for k in parallel.BLAS_ENV} == before
 
 
+def test_workers_close_before_the_scheduler(monkeypatch):
+    """The workers go first, so that none logs a failed heartbeat to a scheduler already gone."""
+    seen = []
+    real = parallel._close_workers
+
+    def spy(cluster, timeout=30.0):
+        seen.append(("scheduler", str(cluster.scheduler.status), "workers", len(cluster.workers)))
+        real(cluster, timeout)
+        seen.append(("scheduler", str(cluster.scheduler.status), "workers", len(cluster.workers)))
+
+    monkeypatch.setattr(parallel, "_close_workers", spy)
+    with parallel.dask_client(2) as c:
+        assert sum(c.run(lambda: 1).values()) == 2
+    assert seen == [
+        ("scheduler", "Status.running", "workers", 2),
+        ("scheduler", "Status.running", "workers", 0),
+    ]
+
+
 def test_workers_run_single_threaded(client):
     env = client.run(lambda: os.environ.get("OMP_NUM_THREADS"))
     assert set(env.values()) == {"1"}

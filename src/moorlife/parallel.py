@@ -252,9 +252,26 @@ def dask_client(threads: int = 1, *, address: str | None = None) -> Iterator[Any
                 cluster.scheduler_address,
                 client.dashboard_link,
             )
-            yield client
+            try:
+                yield client
+            finally:
+                _close_workers(cluster)
     finally:
         restore_env(old)
+
+
+def _close_workers(cluster: Any, timeout: float = 30.0) -> None:
+    """Close a LocalCluster's workers before its scheduler.
+
+    Closing the cluster stops the scheduler first; a worker whose heartbeat is under way then
+    logs ``Failed to communicate with scheduler during heartbeat`` (``CommClosedError``) at
+    ERROR level, after every result was written. Scaling to zero closes the workers through
+    their nannies while the scheduler still answers.
+    """
+    cluster.scale(0)
+    end = time.monotonic() + timeout
+    while cluster.workers and time.monotonic() < end:
+        time.sleep(0.05)
 
 
 def batch_slices(n: int, batch_size: int) -> list[slice]:
