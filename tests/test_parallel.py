@@ -197,10 +197,14 @@ def test_blas_threads_pinned(monkeypatch):
 
 def test_local_cluster_leaves_the_driver_environment_as_found(monkeypatch):
     monkeypatch.delenv(parallel.SCHEDULER_ENV, raising=False)
-    before = {k: os.environ.get(k) for k in parallel.BLAS_ENV}
+    keys = (*parallel.BLAS_ENV, *parallel.WORKER_MALLOC_ENV)
+    before = {k: os.environ.get(k) for k in keys}
     with parallel.dask_client(1) as client:
         assert set(client.run(lambda: os.environ.get("NUMBA_NUM_THREADS")).values()) == {"1"}
-    assert {k: os.environ.get(k) for k in parallel.BLAS_ENV} == before
+        # the workers' allocator keeps freed memory (set before their process started)
+        got = client.run(lambda: {k: os.environ.get(k) for k in parallel.WORKER_MALLOC_ENV})
+        assert list(got.values()) == [parallel.WORKER_MALLOC_ENV]
+    assert {k: os.environ.get(k) for k in keys} == before
 
 
 def test_workers_close_before_the_scheduler(monkeypatch):
