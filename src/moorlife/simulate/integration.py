@@ -12,6 +12,7 @@ from moorlife.simulate.forcing import Forcing
 from moorlife.simulate.initial import InitialState, at_rest
 from moorlife.simulate.kernel import (
     Body,
+    DynamicLines,
     Excitation,
     MooringLink,
     Radiation,
@@ -82,16 +83,8 @@ def _run_compiled(moor: Any, mstate: Any, n: int, dt: float, records: tuple) -> 
         nl = mstate.r.shape[0] * mstate.r.shape[1] if LANES else 0
         N = moor.model.n_segments
         try:
-            _run_dynamic(
-                n,
-                float(dt),
-                moor.substeps(dt),
-                *records,
-                mstate,
-                moor.kernel,
-                lanes.lane_state(nl, N),
-                lanes.lane_work(nl, N),
-            )
+            lines = DynamicLines(mstate, moor.kernel, lanes.lane_state(nl, N), lanes.lane_work(nl, N))
+            _run_dynamic(n, float(dt), moor.substeps(dt), *records, lines)
         except FloatingPointError:
             raise FloatingPointError(
                 f"dynamic mooring ({moor.props.name}): non-finite fairlead tension; line state diverged (dt = {dt} s)"

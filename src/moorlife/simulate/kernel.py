@@ -11,7 +11,7 @@ compiled step of their model (:mod:`moorlife.mooring`).
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numba
 import numpy as np
@@ -22,7 +22,18 @@ from moorlife.mooring.lanes import step_lanes as _step_lanes
 from moorlife.mooring.lanes import unpack as _unpack_lanes
 from moorlife.mooring.quasistatic import step_lines as _step_quasistatic_lines
 
-__all__ = ["rotation_matrix", "State", "Body", "Radiation", "Strips", "Rotor", "Excitation", "MooringLink", "Recorder"]
+__all__ = [
+    "rotation_matrix",
+    "State",
+    "Body",
+    "Radiation",
+    "Strips",
+    "Rotor",
+    "Excitation",
+    "MooringLink",
+    "DynamicLines",
+    "Recorder",
+]
 
 
 class State(NamedTuple):
@@ -148,6 +159,19 @@ class MooringLink(NamedTuple):
     forces: np.ndarray
     #: (B, 3) fairlead tensions at the end of the step, N
     tension: np.ndarray
+
+
+class DynamicLines(NamedTuple):
+    """The dynamic lines of the batch as the record loop steps them."""
+
+    #: the ``moorlife.mooring.dynamic.DynamicState`` of the lines (updated in place)
+    state: Any
+    #: the line model (``moorlife.mooring.dynamic.LineKernel``)
+    kernel: Any
+    #: the same lines as lanes (``moorlife.mooring.lanes.LaneState``; zero lanes: the one-line step)
+    lanes: Any
+    #: the lanes' scratch (``moorlife.mooring.lanes.LaneWork``)
+    work: Any
 
 
 class Recorder(NamedTuple):
@@ -553,45 +577,32 @@ def _predict_fairleads(q, v, fair, dt, r_out, v_out):  # pragma: no cover - numb
 
 
 @numba.njit(cache=True)
-def _run_dynamic(
-    n, dt, nsub, state, body, rad, strips, rotor, wave, rec, lines, kernel, lanes, work
-):  # pragma: no cover
+def _run_dynamic(n, dt, nsub, state, body, rad, strips, rotor, wave, rec, lines):  # pragma: no cover
     """The whole record with dynamic lines, in one compiled loop (no per-step dispatch).
 
     Each step is exactly the Python loop of ``integrate``: predict the fairleads, advance the
-    lines (the compiled step ``moorlife.mooring.dynamic.step_lines`` of the state ``lines``
-    with the model's ``kernel``, ``nsub`` substeps), then :func:`_advance` the platform.
+    lines (the compiled step ``moorlife.mooring.dynamic.step_lines`` of ``lines.state`` with the
+    model's ``lines.kernel``, ``nsub`` substeps), then :func:`_advance` the platform.
 
-    With the BDF2 scheme and ``lanes`` (a ``moorlife.mooring.lanes.LaneState`` of every line of
-    the batch; ``work`` its scratch), the first step is taken as above (it starts the BDF2
-    history), and the others by ``moorlife.mooring.lanes.step_lanes``: the same bits, every line
-    of the batch at once. Empty lanes (zero lines) keep the one-line step throughout.
+    With the BDF2 scheme and lanes (:class:`DynamicLines`), the first step is taken as above (it
+    starts the BDF2 history), and the others by ``moorlife.mooring.lanes.step_lanes``: the same
+    bits, every line of the batch at once. Empty lanes keep the one-line step throughout.
     """
-    moor = MooringLink(True, lines.forces, lines.tension)
+    ls, kernel, lanes, work = lines.state, lines.kernel, lines.lanes, lines.work
+    moor = MooringLink(True, ls.forces, ls.tension)
     fast = kernel.scheme == 1 and lanes.r.shape[2] > 0
+    fp, fv = state.fairlead_position, state.fairlead_velocity
     for j in range(n):
-        _predict_fairleads(
-            state.displacement, state.velocity, body.fairleads, dt, state.fairlead_position, state.fairlead_velocity
-        )
+        _predict_fairleads(state.displacement, state.velocity, body.fairleads, dt, fp, fv)
         if fast and j > 0:
-            _step_lanes(
-                lanes,
-                state.fairlead_position,
-                state.fairlead_velocity,
-                dt,
-                nsub,
-                kernel.params,
-                work,
-                lines.forces,
-                lines.tension,
-            )
+            _step_lanes(lanes, fp, fv, dt, nsub, kernel.params, work, ls.forces, ls.tension)
         else:
-            _step_dynamic_lines(lines, state.fairlead_position, state.fairlead_velocity, dt, nsub, kernel)
+            _step_dynamic_lines(ls, fp, fv, dt, nsub, kernel)
             if fast:
-                _pack_lanes(lines, lanes)
+                _pack_lanes(ls, lanes)
         _advance(j, dt, state, body, rad, strips, rotor, wave, moor, rec)
     if fast and n > 1:
-        _unpack_lanes(lanes, lines)
+        _unpack_lanes(lanes, ls)
 
 
 @numba.njit(cache=True)
