@@ -2,6 +2,7 @@
 
     python validation/replicates.py --results results --system MS6 --top 20 --seeds 5 \\
         --overlay validation/overlays/rest600.yaml > tables.md
+    python validation/replicates.py ... --cv-estimates   # can one record rank the seed CV?
 
 The truth year of MS6 is overestimated by 8-18 % (``validation/truth.md``), by the hours of
 its largest storm, all reconstructed from one training record (the MDA's first state, the
@@ -129,6 +130,90 @@ def seed_scatter(sims: xr.Dataset, reps: list[xr.Dataset], ids: np.ndarray) -> p
     return pd.DataFrame(rows)
 
 
+def cv_estimates(
+    cfg: dict[str, Any], ms: str, results: Path, cases: xr.Dataset, sims: xr.Dataset, scatter: pd.DataFrame
+) -> str:
+    """Can one record rank the states by their seed CV? Estimates from a new record of each state.
+
+    The CV of the hour's damage from the spread of its ``k`` sub-windows' damage
+    (``std / mean / sqrt(k)``, as if they were independent), and two proxies of the study's
+    record (tension std / mean; Hs), each against the CV of ``1 + K`` records (``scatter``):
+    Spearman's rank correlation per line and pooled, and the ratio of the medians.
+    """
+    from scipy.stats import spearmanr
+
+    from moorlife import fatigue, simulate
+    from moorlife.io.platform import open_platform_nc, read_platform_config
+    from moorlife.stages import result_settings
+    from moorlife.stages.check import check_study
+
+    ids = np.sort(scatter["case"].unique())
+    seed_cv = scatter.pivot(index="case", columns="line", values="cv_one_record").loc[ids]
+    lines = list(seed_cv.columns)
+    sim = {**result_settings(cfg, "simulation"), "keep_timeseries": True}
+    row = check_study(cfg, harness._schema()).mooring.loc[ms]
+    model = simulate.prepare_model(
+        open_platform_nc(results / "hydro" / "platform.nc"),
+        read_platform_config(harness.ROOT / cfg["platform"]),
+        {**{k: (v.item() if hasattr(v, "item") else v) for k, v in row.items()}, "mooring_system": ms},
+        cfg.get("mooring", {}),
+        sim,
+    )
+    c = cases.sel({DIM: ids})
+    ten = []
+    for a in range(0, ids.size, 8):  # batches of 8: a record's time series is large
+        sl = slice(a, a + 8)
+        sea = {k: c[k].values[sl] for k in ("wind_speed", "wind_dir", "hs", "tp", "wave_dir")}
+        out = simulate.simulate_batch(
+            sea,
+            case_ids=ids[sl],
+            mooring_system=ms,
+            seed=int(cfg["seed"]),
+            stream="cvpilot",
+            model_inputs=model,
+            sim_cfg=sim,
+            fatigue_cfg=cfg["fatigue"],
+            stats_cfg=cfg.get("statistics", {}),
+        )
+        ten.append(out["ts_tension"].astype(float))
+    ten = np.concatenate(ten)  # (state, line, nt)
+    kw = fatigue.fatigue_settings(cfg["fatigue"], source="config").damage_kwargs()
+    li = model.line_info
+    est = {}
+    for k in (4, 6, 12):
+        w = ten.shape[-1] // k
+        sub = np.stack(
+            [
+                fatigue.hourly_damage(
+                    ten[..., i * w : (i + 1) * w],
+                    w * float(sim["dt"]),
+                    link_diameter=li["link_diameter"],
+                    mbs=li["mbs"],
+                    chain=li["chain"],
+                    **kw,
+                )[0]
+                for i in range(k)
+            ]
+        )
+        est[f"{k} sub-windows"] = sub.std(axis=0, ddof=1) / sub.mean(axis=0) / np.sqrt(k)
+    rec = sims.sel({DIM: ids, "line": lines})  # the proxies of the study's record
+    est["tension std / mean"] = (rec["tension_std"] / rec["tension_mean"]).values
+    est["Hs"] = np.repeat(c["hs"].values[:, None], len(lines), axis=1)
+    rows = []
+    for name, e in est.items():
+        r = [spearmanr(e[:, j], seed_cv.values[:, j])[0] for j in range(len(lines))]
+        ratio = np.median(e / seed_cv.values, axis=0) if "sub-windows" in name else [np.nan] * len(lines)
+        rows.append(
+            {
+                "estimate": name,
+                **{f"rank r {ln}": round(x, 2) for ln, x in zip(lines, r)},
+                "rank r pooled": round(spearmanr(e.ravel(), seed_cv.values.ravel())[0], 2),
+                **{f"median est/CV {ln}": round(x, 2) for ln, x in zip(lines, ratio)},
+            }
+        )
+    return pd.DataFrame(rows).set_index("estimate").to_markdown()
+
+
 def parse_grid(spec: str) -> list[tuple[int, str, int]]:
     """``N_MDA:TOP:SEEDS,...``; ``TOP`` is a count of states by damage mass or ``caseID`` (one state)."""
     out = []
@@ -154,6 +239,9 @@ def main(argv: list[str] | None = None) -> int:
     )
     p.add_argument("--overlay", action="append", default=[], help="overlays of the study's simulation settings")
     p.add_argument("--work", type=Path, default=harness.ROOT / "results" / "validation_replicates")
+    p.add_argument(
+        "--cv-estimates", action="store_true", help="only the seed scatter and its estimates from one record (no grid)"
+    )
     a = p.parse_args(argv)
     cfg = harness.study(a.overlay)
     ms = a.system
@@ -193,6 +281,10 @@ def main(argv: list[str] | None = None) -> int:
         "records, and the study's record over their mean\n"
     )
     print(table.sort_values(table.columns[1], ascending=False).to_markdown())
+    if a.cv_estimates:
+        print("\n## Estimates of the seed CV from one new record of each state (stream cvpilot)\n")
+        print(cv_estimates(cfg, ms, a.results, cases, sims, sc))
+        return 0
 
     res, names_ = {}, []
     for n, top, k in grid:
