@@ -78,8 +78,6 @@ class LaneWork(NamedTuple):
     kx: np.ndarray  # (N + 1, 3, nl) position residual
     r2: np.ndarray  # (N + 1, 3, nl) predicted positions
     v2: np.ndarray  # (N + 1, 3, nl) predicted velocities
-    tmp: np.ndarray  # (3, nl)
-    kxt: np.ndarray  # (3, nl)
     fair: np.ndarray  # (4, 3, nl) start position and velocity, path position and velocity
 
 
@@ -111,8 +109,6 @@ def lane_work(nl: int, N: int) -> LaneWork:
         kx=np.zeros((n1, 3, nl)),
         r2=np.zeros((n1, 3, nl)),
         v2=np.zeros((n1, 3, nl)),
-        tmp=np.zeros((3, nl)),
-        kxt=np.zeros((3, nl)),
         fair=np.zeros((4, 3, nl)),
     )
 
@@ -335,7 +331,7 @@ def _factor(w, N, cs, cg, cz):  # pragma: no cover - numba
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _solve_blocks(S, Winv, b, x, N, tmp):  # pragma: no cover - numba
+def _solve_blocks(S, Winv, b, x, N):  # pragma: no cover - numba
     """``dynamic._solve_blocks`` on every lane."""
     nl = b.shape[2]
     for a in range(3):
@@ -371,7 +367,7 @@ def _solve_blocks(S, Winv, b, x, N, tmp):  # pragma: no cover - numba
 def _bdf2(ls, rf1, vf1, h, p, w):  # pragma: no cover - numba
     """``dynamic._bdf2_step`` on every lane; fairleads at ``rf1, vf1 (3, nl)`` at the step's end."""
     r, v, rp, vp = ls.r, ls.v, ls.r_prev, ls.v_prev
-    r2, v2, xb, dv, kx, rhs, tmp = w.r2, w.v2, w.xb, w.dv, w.kx, w.rhs, w.tmp
+    r2, v2, xb, dv, kx, rhs = w.r2, w.v2, w.xb, w.dv, w.kx, w.rhs
     sq, sa, sg, Kz, tang, am, bm, F = w.sq, w.sa, w.sg, w.Kz, w.tang, w.am, w.bm, w.F
     nl = r.shape[2]
     N = int(p[_N])
@@ -414,7 +410,7 @@ def _bdf2(ls, rf1, vf1, h, p, w):  # pragma: no cover - numba
             rhs[i, 0, m] = am[i] * d0 + tv * t0 + beta * (F[i, 0, m] + k0)
             rhs[i, 1, m] = am[i] * d1 + tv * t1 + beta * (F[i, 1, m] + k1)
             rhs[i, 2, m] = am[i] * d2 + tv * t2 + beta * (F[i, 2, m] + k2)
-    _solve_blocks(w.S, w.Winv, rhs, dv, N, tmp)
+    _solve_blocks(w.S, w.Winv, rhs, dv, N)
     for i in range(1, N):
         for a in range(3):
             for m in range(nl):
