@@ -5,7 +5,7 @@
 #   route 2  a dask-jobqueue cluster (workflow/profiles/slurm/dask_jobqueue_example.py), then
 #            snakemake --cores 2 with DASK_SCHEDULER_ADDRESS: the simulations run on its workers
 # Route 1 and route 2 start from the local run's results/hydro/platform.nc (copied, then
-# touched: the BEM is not bit-reproducible, and snakemake must not rerun it). Needs a SLURM
+# touched: the BEM is the slowest rule, and snakemake must not rerun it). Needs a SLURM
 # cluster: if none answers, .ci/slurm.sh starts the one-node cluster and stops it at exit.
 # Usage: .ci/test_cluster.sh [BIN]   (BIN: the venv's bin folder, default .venv/bin)
 set -euo pipefail

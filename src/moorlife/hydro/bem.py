@@ -200,10 +200,9 @@ def run_bem(
         fresh solver in a freshly spawned process, so the result does not depend on ``n_jobs``
         nor on what the calling process did before
         (Capytaine's own ``n_jobs`` splits a frequency's problems into groups, which changed
-        the results by up to 2e-4 relative between 2 and 3 jobs). Capytaine is not
-        bit-reproducible from run to run even so (up to 5e-6 of an array's peak, measured
-        with one thread and a fixed hash seed); that is far below the discretisation error, and the
-        hydro rule runs once: every later stage is bit-identical given ``platform.nc``.
+        the results by up to 2e-4 relative between 2 and 3 jobs). The random sampling of
+        Capytaine's Prony decomposition (finite depth) is seeded (:func:`_seed_prony`), so
+        the same settings give the same bits from run to run.
 
     Returns
     -------
@@ -322,6 +321,7 @@ def _solve_frequency(
     F0 = np.zeros((solved.size, 6), dtype=complex)
     H_rad = np.zeros((6, theta.size), dtype=complex)
     H0 = np.zeros((solved.size, theta.size), dtype=complex)
+    _seed_prony()
     solver = cpt.BEMSolver(engine=dihedral.dihedral_engine()) if n else cpt.BEMSolver()
     with threadpool_limits(limits=1):
         results = solver.solve_all(problems, keep_details=finite, n_jobs=1, n_threads=1, progress_bar=False)
@@ -342,6 +342,36 @@ def _solve_frequency(
     F = np.stack([dihedral.transform_excitation(F0[i], a, s) for i, a, s in how])
     H_dif = np.stack([dihedral.transform_kochin(H0[i], a, s) for i, a, s in how])
     return A, B, F, H_rad, H_dif
+
+
+PRONY_SEED = 20190601
+"""Seed of the random generator of Capytaine's Prony decomposition (any fixed value)."""
+
+
+def _seed_prony() -> None:
+    """Give Capytaine's Prony decomposition a freshly seeded generator.
+
+    The finite-depth Green function approximates part of its kernel by a sum of exponentials
+    (``capytaine.tools.prony_decomposition``), fitted on a domain whose end is moved at random
+    by up to 1 % (to step over a singular point) with an unseeded module-level generator. The
+    fit, and so every finite-depth coefficient, then changed from run to run: up to 1.5e-5 of
+    the added mass between two ``make run`` (2026-12-03), and 2.4e-4 once on the coarse mesh.
+    Capytaine offers no argument for it, so the module's generator is replaced before each
+    frequency (each solve draws the same sequence, whatever ran before in the process).
+
+    Raises
+    ------
+    RuntimeError
+        If the installed Capytaine has no such generator (its Prony code changed: check it).
+    """
+    from capytaine.tools import prony_decomposition
+
+    if not isinstance(getattr(prony_decomposition, "RNG", None), np.random.Generator):
+        raise RuntimeError(
+            "capytaine.tools.prony_decomposition.RNG is gone: check how this Capytaine version "
+            "randomises its Prony decomposition before trusting the BEM to be reproducible"
+        )
+    prony_decomposition.RNG = np.random.default_rng(PRONY_SEED)
 
 
 def far_field_drift(
