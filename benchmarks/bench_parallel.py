@@ -13,6 +13,10 @@ The stage's time includes its fixed start (the cluster, the workers' first compi
 load, the stores), as a rule run does; the pool's does not (it is started and warmed first).
 It prints the wall time of each, the efficiency ``T(1) / (2 T(2))`` of both, and the ratio of the
 stage's 2-worker wall time to the pool's. Wall time is the figure here: run it on an idle machine.
+It also prints the CPU time of each stage run, of this process (the driver: scheduler, store) and
+of its finished children (the workers): equal CPU at 1 and 2 workers means the fan-out adds no
+work, and a low efficiency with it is the host (two runs of the same 2-worker stage took 201 and
+173 s on 2026-12-03).
 The sea states are the first ``--states`` training states of ``cases.zarr`` (or the maximum
 dissimilarity states of one year of the default hindcast when it does not exist). Usage::
 
@@ -31,6 +35,7 @@ from __future__ import annotations
 import argparse
 import concurrent.futures as cf
 import multiprocessing as mp
+import resource
 import tempfile
 import time
 from pathlib import Path
@@ -61,6 +66,12 @@ def _cases(path: Path | None, n: int, config: dict):
     h = dict(config["hindcast"], end="1985-12-31T23:00")
     hc = build_hindcast(h, seed=config["seed"])
     return selection.select_cases(hc, n_train=n, n_validate=1, seed=config["seed"]).isel(case=slice(0, n))
+
+
+def _cpu() -> tuple[float, float]:
+    """User + system CPU seconds of this process and of its finished (waited-for) children."""
+    me, kids = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return me.ru_utime + me.ru_stime, kids.ru_utime + kids.ru_stime
 
 
 def _pool_batch(args):
@@ -125,7 +136,7 @@ def main() -> None:
         )
         wall = {}
         for w in a.workers:
-            t0 = time.perf_counter()
+            t0, c0 = time.perf_counter(), _cpu()
             stage.run(
                 cases=tmp / "cases.zarr",
                 platform=a.platform,
@@ -144,7 +155,12 @@ def main() -> None:
                 log=tmp / f"sims_{w}.log",
             )
             wall["stage", w] = time.perf_counter() - t0
-            print(f"simulate stage, Dask, {w} worker(s): {wall['stage', w]:7.1f} s wall")
+            time.sleep(2.0)  # the workers' processes reaped: their CPU counts among the children
+            drv, kids = (b - a for a, b in zip(c0, _cpu()))
+            print(
+                f"simulate stage, Dask, {w} worker(s): {wall['stage', w]:7.1f} s wall; "
+                f"CPU {drv + kids:.1f} s (driver {drv:.1f} s, workers {kids:.1f} s)"
+            )
         if len(a.workers) > 1:
             s1, s2 = (open_zarr(tmp / f"sims_{w}.zarr") for w in a.workers[:2])
             same = all(np.array_equal(s1[v].values, s2[v].values, equal_nan=True) for v in s1.data_vars)
