@@ -229,7 +229,9 @@ def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--results", type=Path, default=harness.ROOT / "results")
     p.add_argument("--system", default="MS6")
-    p.add_argument("--top", type=int, default=20, help="states replicated (of the fits on 1,000 and 900 states)")
+    p.add_argument(
+        "--top", type=int, default=20, help="states replicated (of each fit of the grid, and of 1,000 and 900 states)"
+    )
     p.add_argument("--seeds", type=int, default=5)
     p.add_argument(
         "--grid",
@@ -257,7 +259,8 @@ def main(argv: list[str] | None = None) -> int:
         cs = cases.isel({DIM: keep})
         sm = sims.sel({DIM: cs[DIM].values})
         prefixes[n] = (cs, sm, damage_mass(cfg, cs, sm, stores["hindcast"]))
-    ids = np.union1d(prefixes[1000][2].index.values[: a.top], prefixes[900][2].index.values[: a.top])
+    # the top states of every fit the grid makes (each MDA prefix ranks its own): every variant has its replicates
+    ids = np.unique(np.concatenate([m.index.values[: a.top] for _, _, m in prefixes.values()]))
     mass = prefixes[1000][2]
     print(
         f"{ms}: the top {a.top} of 1,000 training states hold {100 * mass['largest'].iloc[: a.top].sum():.1f} % "
