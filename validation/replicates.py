@@ -24,7 +24,10 @@ the same cost, removes it:
    ``N_MDA`` MDA states (maximum dissimilarity is greedy: exactly an MDA of that size) with the
    outputs of its ``TOP`` states by damage mass (or of one state, ``caseID``) replaced by the
    mean of their study record and ``SEEDS`` replicates: ``N_MDA + TOP x SEEDS`` simulations.
-   ``1000:0:0`` is the paper's method; ``960:20:2`` costs the same.
+   ``1000:0:0`` is the paper's method; ``960:20:2`` costs the same. ``N:pilotT.M:SEEDS`` gives the
+   top ``T`` one pilot replicate and averages ``SEEDS`` into the ``M`` of them with the largest
+   damage share x seed CV (:func:`pilot_picks`): ``N + T + M (SEEDS - 1)`` simulations
+   (``960:pilot20.5:5`` costs 1,000).
 
 ``--overlay`` sets the simulation settings of the replicates; they must be the study's (the
 year of ``validation/truth.md`` ran from rest with a 600 s transient).
@@ -215,14 +218,33 @@ def cv_estimates(
 
 
 def parse_grid(spec: str) -> list[tuple[int, str, int]]:
-    """``N_MDA:TOP:SEEDS,...``; ``TOP`` is a count of states by damage mass or ``caseID`` (one state)."""
+    """``N_MDA:TOP:SEEDS,...``; ``TOP`` is a count of states by damage mass, ``caseID`` (one
+    state) or ``pilotT.M`` (:func:`pilot_picks`)."""
     out = []
     for item in spec.split(","):
         n, top, k = item.split(":")
-        if not (top.isdigit() or (top.startswith("case") and top[4:].isdigit())):
-            raise ValueError(f"--grid: {item!r}: TOP must be a number or caseID")
+        pilot = top.startswith("pilot") and len(top[5:].split(".")) == 2 and top[5:].replace(".", "").isdigit()
+        if not (top.isdigit() or (top.startswith("case") and top[4:].isdigit()) or pilot):
+            raise ValueError(f"--grid: {item!r}: TOP must be a number, caseID or pilotT.M")
         out.append((int(n), top, int(k)))
     return out
+
+
+def pilot_picks(sims: xr.Dataset, pilot: xr.Dataset, mass: pd.DataFrame, t: int, m: int) -> np.ndarray:
+    """The ``m`` of the top ``t`` states by damage mass with the largest share x seed CV.
+
+    Each of the ``t`` states has one pilot record (``pilot``) beside the study's: the CV of one
+    record is estimated from the two, ``sqrt(2) |d1 - d2| / (d1 + d2)`` per line (S-N damage),
+    and a state's score is its largest ``share x CV`` over the lines. The variant ``pilotT.M``
+    with ``SEEDS`` costs ``t`` pilot records plus ``m (SEEDS - 1)``.
+    """
+    cand = mass.index.values[:t]
+    lines = [c for c in mass.columns if c not in ("largest", "hours")]
+    d1 = sims["damage_sn"].sel({DIM: cand, "line": lines}).values
+    d2 = pilot["damage_sn"].sel({DIM: cand, "line": lines}).values
+    cv = np.sqrt(2.0) * np.abs(d1 - d2) / (d1 + d2)
+    score = (mass.loc[cand, lines].values * cv).max(axis=1)
+    return cand[np.argsort(-score, kind="stable")[:m]]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -292,13 +314,22 @@ def main(argv: list[str] | None = None) -> int:
     res, names_ = {}, []
     for n, top, k in grid:
         cs, sm, m = prefixes[n]
-        chosen = np.array([int(top[4:])]) if top.startswith("case") else m.index.values[: int(top)]
-        missing = np.setdiff1d(chosen, reps[0][DIM].values) if k else np.array([], dtype=int)
-        if missing.size:
-            raise SystemExit(f"--grid {n}:{top}:{k}: cases {missing.tolist()} have no replicates (raise --top)")
-        name = f"{n} MDA" + (f" + {top} x {k} seeds" if k else "")
+        if top.startswith("pilot"):  # the pilot record of the top t, then the m of largest share x CV
+            t, mm = (int(x) for x in top[5:].split("."))
+            if t > a.top:
+                raise SystemExit(f"--grid {n}:{top}:{k}: the pilot needs --top >= {t}")
+            chosen = pilot_picks(sm, reps[0], m, t, mm)
+            rest = np.setdiff1d(m.index.values[:t], chosen)
+            sm = averaged(averaged(sm, reps[:1], rest), reps[:k], chosen)
+            name = f"{n} MDA + pilot {t} + {mm} x {k - 1} seeds (cases {', '.join(map(str, chosen))})"
+        else:
+            chosen = np.array([int(top[4:])]) if top.startswith("case") else m.index.values[: int(top)]
+            missing = np.setdiff1d(chosen, reps[0][DIM].values) if k else np.array([], dtype=int)
+            if missing.size:
+                raise SystemExit(f"--grid {n}:{top}:{k}: cases {missing.tolist()} have no replicates (raise --top)")
+            name = f"{n} MDA" + (f" + {top} x {k} seeds" if k else "")
+            sm = averaged(sm, reps[:k], chosen) if k else sm
         names_.append(name)
-        sm = averaged(sm, reps[:k], chosen) if k else sm
         res[(ms, name)] = harness.measure(cfg, ms, a.results, a.work / ms / "fit", {**stores, "cases": cs, "sims": sm})
         print(f"{name}: done", file=sys.stderr)
     print()
