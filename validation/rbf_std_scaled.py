@@ -28,24 +28,22 @@ import warnings
 
 import numpy as np
 import xarray as xr
+from rbf_thrust_coordinate import load_study
 
 from moorlife import lifecycle as lc
 from moorlife import names, rbf
 
 
 def run(results: str, ms: str, cases0: xr.Dataset, m: float) -> list[tuple]:
-    st = lc.RBFSettings.from_config(None, source="lifecycle.rbf")  # the schema defaults
-    grid = rbf.shape_grid(st.grid_min, st.grid_max, st.grid_n)
-    sims = xr.open_zarr(f"{results}/{ms}/simulations.zarr", consolidated=False).load()
-    dim = names.CASE
-    common = np.intersect1d(cases0[dim].values, sims[dim].values)
-    cases, sims = cases0.sel({dim: common}), sims.sel({dim: common})
-    role = np.array([str(v) for v in cases["role"].astype(object).values])
-    tr, va = role == "train", role == "validate"
-    x = lc._points(cases, dim)
-    lo, span = lc._selection_scaling(cases)
-    mask = np.array([v.endswith("dir") for v in names.METOCEAN_VARS])
-    kw = {"is_direction": mask, "shapes": grid, "smoothing": st.smoothing, "lo": lo, "span": span}
+    st = load_study(results, ms, cases0)
+    sims, tr, va, x, dim = st.sims, st.train, st.validate, st.x, names.CASE
+    kw = {
+        "is_direction": st.is_direction,
+        "shapes": st.grid,
+        "smoothing": st.settings.smoothing,
+        "lo": st.lo,
+        "span": st.span,
+    }
     lines = [str(v) for v in sims[names.LINE].values]
     d = sims["damage_sn"].transpose(dim, names.LINE).values
     s = sims["tension_std"].transpose(dim, names.LINE).values

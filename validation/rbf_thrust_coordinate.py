@@ -17,6 +17,7 @@ from __future__ import annotations
 import sys
 import time
 import warnings
+from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -29,22 +30,49 @@ from moorlife.io import read_yaml
 SPACES = (("5d", None), ("6d_T", 1.0), ("6d_T0.5", 0.5))
 
 
-def validation_r(results: str, ms: str, cases0: xr.Dataset, ws: np.ndarray, ct: np.ndarray) -> tuple[list[str], dict]:
-    """Validation r per output of one system in each space of :data:`SPACES`."""
+class Study(NamedTuple):
+    """One system's stored states in the paper's space, for the experiments' own fits."""
+
+    settings: lc.RBFSettings  # the schema defaults of lifecycle.rbf
+    grid: np.ndarray  # Rippa's shape grid
+    sims: xr.Dataset  # the simulated states that are also in the selection
+    train: np.ndarray  # boolean masks of the roles
+    validate: np.ndarray
+    x: np.ndarray  # the 5-D points, with the selection's scaling lo, span
+    lo: np.ndarray
+    span: np.ndarray
+    is_direction: np.ndarray
+
+
+def load_study(results: str, ms: str, cases0: xr.Dataset) -> Study:
+    """The stores of system ``ms`` under ``results`` aligned with the selection ``cases0``."""
     st = lc.RBFSettings.from_config(None, source="lifecycle.rbf")  # the schema defaults
-    grid = rbf.shape_grid(st.grid_min, st.grid_max, st.grid_n)
     sims = xr.open_zarr(f"{results}/{ms}/simulations.zarr", consolidated=False).load()
     dim = names.CASE
     common = np.intersect1d(cases0[dim].values, sims[dim].values)
     cases, sims = cases0.sel({dim: common}), sims.sel({dim: common})
-    role = np.array([str(v) for v in cases["role"].values])
-    tr, va = role == "train", role == "validate"
-    cols = lc.output_columns(sims, dim, st.outputs)
-    y = lc.stack_outputs(sims, dim, cols)
-    x = lc._points(cases, dim)
+    role = np.array([str(v) for v in cases["role"].astype(object).values])
     lo, span = lc._selection_scaling(cases)
+    return Study(
+        settings=st,
+        grid=rbf.shape_grid(st.grid_min, st.grid_max, st.grid_n),
+        sims=sims,
+        train=role == "train",
+        validate=role == "validate",
+        x=lc._points(cases, dim),
+        lo=lo,
+        span=span,
+        is_direction=np.array([v.endswith("dir") for v in names.METOCEAN_VARS]),
+    )
+
+
+def validation_r(results: str, ms: str, cases0: xr.Dataset, ws: np.ndarray, ct: np.ndarray) -> tuple[list[str], dict]:
+    """Validation r per output of one system in each space of :data:`SPACES`."""
+    s = load_study(results, ms, cases0)
+    st, grid, tr, va, x, lo, span, mask = s.settings, s.grid, s.train, s.validate, s.x, s.lo, s.span, s.is_direction
+    cols = lc.output_columns(s.sims, names.CASE, st.outputs)
+    y = lc.stack_outputs(s.sims, names.CASE, cols)
     isd = np.array([c[0].startswith("damage") for c in cols])
-    mask = np.array([v.endswith("dir") for v in names.METOCEAN_VARS])
     thrust = turbine.thrust(x[:, 0], ws, ct)
     tmax = turbine.thrust(np.linspace(0, 30, 3001), ws, ct).max()
     res = {}
