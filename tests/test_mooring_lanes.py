@@ -87,7 +87,14 @@ def test_pack_and_unpack_are_inverse():
     )
     ls = lanes.lane_state(6, 4)
     lanes.pack(st, ls)
-    np.testing.assert_array_equal(ls.r[:, :, 4], st.r[1, 1])  # case 1, line 1 is lane 1 * 3 + 1
+    arrays = lanes.lane_arrays(ls, 6, 4)
+    np.testing.assert_array_equal(arrays["r"][:, :, 4], st.r[1, 1])  # case 1, line 1 is lane 1 * 3 + 1
+    np.testing.assert_array_equal(arrays["v_prev"][:, :, 5], st.v_prev[1, 2])
+    # the lanes past the last line (to a multiple of the block width) are copies of it
+    rec = ls.nodes.reshape(-1, 5, lanes._NQ, lanes.W)
+    assert rec.shape[0] * lanes.W >= 6
+    for m in range(6, rec.shape[0] * lanes.W):
+        np.testing.assert_array_equal(rec[m // lanes.W, :, :3, m % lanes.W], st.r[1, 2])
     back = dyn.DynamicState(*(np.zeros_like(a) for a in st))
     lanes.unpack(ls, back)
     for name in ("r", "v", "r_prev", "v_prev"):

@@ -39,8 +39,8 @@ takes as they are, and the step updates them in place (``state.forces (B, L, 3)`
 They are the same computation as ``model.step`` (which calls them), bit for bit; the
 dynamic step raises ``FloatingPointError`` on a non-finite tension.
 
-The fast path of the dynamic step steps every line of a batch at once, the lines along the
-last axis of each array (:mod:`moorlife.mooring.lanes`, BDF2 once its history is started)::
+The fast path of the dynamic step steps every line of a batch at once, the lines as the lanes of
+vectors in blocks of ``lanes.W`` (:mod:`moorlife.mooring.lanes`, BDF2 once its history is started)::
 
     lanes.pack(state, ls)                        # ls = lanes.lane_state(B * L, N)
     lanes.step_lanes(ls, r_fair, v_fair, dt, nsub, model.model.params, work, forces, tension)

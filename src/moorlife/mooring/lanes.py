@@ -1,18 +1,40 @@
-"""The BDF2 line step of many lines at once: every line of a batch is one lane of a vector.
+"""The BDF2 line step of many lines at once: the lines of a batch in blocks of ``W`` lanes.
 
 :func:`moorlife.mooring.dynamic.step_lines` steps one line at a time (node, then component):
 its arithmetic is scalar, and its loops are too short and too branchy for the compiler to
-vectorise. Here the same step runs on every line of a batch together, with the lines along the
-last axis of every array (``(N + 1, 3, nl)`` for the nodes). Each operation of the scalar
-step becomes a loop over the lines of unit stride that the compiler turns into SIMD
-instructions; the per-line branches (slack segments, seabed contact, friction) become masked
-selects.
+vectorise. Here the same step runs on every line of a batch together: the lines are the lanes
+of a vector, and each operation of the scalar step becomes a loop over the lanes that the
+compiler turns into SIMD instructions; the per-line branches (slack segments, seabed contact,
+friction) become masked selects.
 
 Every lane does exactly the floating-point operations of the scalar step, in the same order
 (no reassociation, no fused multiply-add), so the two give the same bits: the scalar step is
 the strict reference, this one the fast path (``tests/test_mooring_lanes.py``). Only the
 BDF2 step of a constant step length is here; the ROS2 start of :func:`step_lines` stays scalar
 (:func:`moorlife.simulate.kernel._run_dynamic` takes the first step with it).
+
+Layout, and why. The lanes come in blocks of ``W`` (a module constant; lanes past the last
+line are padded with copies of the last line, whose results are ignored). Everything a block
+keeps for one node, its state and the step's scratch, is one *record* of ``_NQ`` rows of ``W``
+values (one value per lane), and the records follow each other, node after node, block after
+block, in ONE flat array (:class:`LaneState`): the value of row ``q`` of node ``i`` of lane
+``l`` of block ``blk`` is at ``(blk (N + 1) + i) _REC + q W + l`` with ``_REC = _NQ W``. The
+rows of a segment (``s`` joins nodes ``s`` and ``s + 1``) are in the record of node ``s``.
+Two things stopped LLVM from vectorising the lane loops of the earlier layout (one array per
+quantity, ``(N + 1, 3, nl)``) at a batch's 24 lanes (``benchmarks/README.md``, 2026-12-03
+and 2026-12-04): the distance between the rows of an array was the run-time lane count, so
+stores to several rows might overlap; and Numba's arrays are not ``noalias``, so a loop that
+touches several arrays needs run-time overlap checks, which LLVM only adds for long loops and
+which cost a fixed time per loop. Here every access of a lane loop is into the same array, at
+the loop's lane plus a base of the block and node plus a compile-time constant (a multiple of
+``W``): LLVM's dependence analysis sees the constant distances and vectorises each lane loop
+without any run-time check. The flat indices are unsigned (:func:`_u`), so that Numba leaves
+out the wrap-around of negative indices, a select that would hide the indices from LLVM.
+
+The lane loops run to the block's width read at run time (``LaneWork.fair.shape[3]``, always
+``W``) rather than to the constant ``W``: Numba runs LLVM without its SLP vectoriser, and LLVM
+fully unrolls a short loop of constant trip count before the loop vectoriser sees it, which
+would leave the unrolled lanes scalar.
 """
 
 from __future__ import annotations
@@ -44,134 +66,212 @@ from moorlife.mooring.line_forces import (
     _ZBED,
 )
 
-__all__ = ["LaneState", "LaneWork", "lane_state", "lane_work", "pack", "unpack", "step_lanes"]
+__all__ = ["W", "LaneState", "LaneWork", "lane_state", "lane_work", "lane_arrays", "pack", "unpack", "step_lanes"]
+
+#: lanes per block (AVX2: 4 doubles a vector)
+W = 4
+
+# The rows of a node record, as offsets in the record (row times W); a vector quantity has three
+# rows (x, y, z at + _X, _Y, _Z), a 3x3 matrix nine (row-major, + (3 a + b) W).
+_X, _Y, _Z = 0, W, 2 * W
+_R = 0 * W  # positions (state)
+_V = 3 * W  # velocities (state)
+_RP = 6 * W  # previous positions (state)
+_VP = 9 * W  # previous velocities (state)
+_R2 = 12 * W  # predicted positions
+_V2 = 15 * W  # predicted velocities
+_XB = 18 * W  # BDF2 position part
+_DV = 21 * W  # BDF2 velocity part, then the solution
+_KX = 24 * W  # position residual
+_RHS = 27 * W  # right-hand side
+_F = 30 * W  # net node force
+_TG = 33 * W  # node tangent
+_C00, _C11, _C22, _C01, _C02, _C12 = (36 * W, 37 * W, 38 * W, 39 * W, 40 * W, 41 * W)  # damping (symmetric)
+_KZ = 42 * W  # seabed stiffness in the matrix
+_WI = 43 * W  # inverted block-Thomas pivot (9 rows)
+_SQ = 52 * W  # segment unit vector
+_SA = 55 * W  # segment axial minus geometric stiffness
+_SG = 56 * W  # segment geometric stiffness
+_SEGF = 57 * W  # segment axial force
+_S = 58 * W  # segment coupling block (9 rows)
+#: rows of a record
+_NQ = 67
+#: values of a record
+_REC = _NQ * W
+#: the first row of the node state and its four vectors (``LaneState``, :func:`lane_arrays`)
+_STATE = (("r", _R), ("v", _V), ("r_prev", _RP), ("v_prev", _VP))
 
 
 class LaneState(NamedTuple):
-    """Node state of ``nl`` lines, the lines last: ``(N + 1, 3, nl)`` each (see ``DynamicState``)."""
+    """``nl`` lines as lanes: the node records of every block, state and scratch (module docstring).
 
-    r: np.ndarray
-    v: np.ndarray
-    r_prev: np.ndarray
-    v_prev: np.ndarray
+    ``nodes`` is flat, ``nblk (N + 1) _NQ W`` values with ``nblk = ceil(nl / W)``.
+    :func:`lane_arrays` gives the node state in the shapes of ``DynamicState``.
+    """
+
+    nodes: np.ndarray
 
 
 class LaneWork(NamedTuple):
-    """Scratch of :func:`step_lanes` for ``nl`` lines of ``N`` segments (lines last)."""
+    """The fairlead path of :func:`step_lanes` for ``nl`` lines, ``(4, 3, nblk, W)``."""
 
-    F: np.ndarray  # (N + 1, 3, nl) net node force
-    segf: np.ndarray  # (N, nl) segment axial force
-    sq: np.ndarray  # (N, 3, nl) segment unit vector
-    sa: np.ndarray  # (N, nl) axial minus geometric stiffness
-    sg: np.ndarray  # (N, nl) geometric stiffness
-    tang: np.ndarray  # (N + 1, 3, nl) node tangent
-    am: np.ndarray  # (N + 1,) isotropic node mass (the same for every line)
-    bm: np.ndarray  # (N + 1,) axial minus normal added mass
-    C: np.ndarray  # (N + 1, 3, 3, nl) local damping matrix
-    Kz: np.ndarray  # (N + 1, nl) seabed stiffness in the matrix
-    S: np.ndarray  # (N, 3, 3, nl) coupling blocks
-    Winv: np.ndarray  # (N + 1, 3, 3, nl) inverted pivots
-    D: np.ndarray  # (3, 3, nl) pivot
-    rhs: np.ndarray  # (N + 1, 3, nl)
-    xb: np.ndarray  # (N + 1, 3, nl) BDF2 position part
-    dv: np.ndarray  # (N + 1, 3, nl) BDF2 velocity part, then the solution
-    kx: np.ndarray  # (N + 1, 3, nl) position residual
-    r2: np.ndarray  # (N + 1, 3, nl) predicted positions
-    v2: np.ndarray  # (N + 1, 3, nl) predicted velocities
-    fair: np.ndarray  # (4, 3, nl) start position and velocity, path position and velocity
+    fair: np.ndarray  # start position and velocity, path position and velocity
+
+
+def _blocks(nl: int) -> int:
+    return -(-nl // W)
 
 
 def lane_state(nl: int, N: int) -> LaneState:
-    """An empty lane state for ``nl`` lines of ``N`` segments."""
-    return LaneState(*(np.zeros((N + 1, 3, nl)) for _ in range(4)))
+    """An empty lane state for ``nl`` lines of ``N`` segments (no lines: an empty array)."""
+    return LaneState(np.zeros(_blocks(nl) * (N + 1) * _REC))
 
 
 def lane_work(nl: int, N: int) -> LaneWork:
     """The scratch of :func:`step_lanes` for ``nl`` lines of ``N`` segments."""
-    n1 = N + 1
-    return LaneWork(
-        F=np.zeros((n1, 3, nl)),
-        segf=np.zeros((N, nl)),
-        sq=np.zeros((N, 3, nl)),
-        sa=np.zeros((N, nl)),
-        sg=np.zeros((N, nl)),
-        tang=np.zeros((n1, 3, nl)),
-        am=np.zeros(n1),
-        bm=np.zeros(n1),
-        C=np.zeros((n1, 3, 3, nl)),
-        Kz=np.zeros((n1, nl)),
-        S=np.zeros((N, 3, 3, nl)),
-        Winv=np.zeros((n1, 3, 3, nl)),
-        D=np.zeros((3, 3, nl)),
-        rhs=np.zeros((n1, 3, nl)),
-        xb=np.zeros((n1, 3, nl)),
-        dv=np.zeros((n1, 3, nl)),
-        kx=np.zeros((n1, 3, nl)),
-        r2=np.zeros((n1, 3, nl)),
-        v2=np.zeros((n1, 3, nl)),
-        fair=np.zeros((4, 3, nl)),
-    )
+    return LaneWork(np.zeros((4, 3, _blocks(nl), W)))
+
+
+def lane_arrays(ls: LaneState, nl: int, N: int) -> dict[str, np.ndarray]:
+    """The node state of the lanes, ``r, v, r_prev, v_prev`` as ``(N + 1, 3, nl)`` copies (lane last)."""
+    rec = ls.nodes.reshape(-1, N + 1, _NQ, W)
+    out = {}
+    for name, row in _STATE:
+        q = row // W
+        a = rec[:, :, q : q + 3, :].transpose(1, 2, 0, 3).reshape(N + 1, 3, -1)
+        out[name] = a[:, :, :nl].copy()
+    return out
+
+
+@njit(cache=True, inline="always")
+def _u(k):  # pragma: no cover - numba
+    """The flat index ``k`` (non-negative) as unsigned: Numba then adds no wrap-around select."""
+    return np.uint64(k)
 
 
 @njit(cache=True, error_model="numpy")
 def pack(state, lanes):  # pragma: no cover - numba
-    """Copy the node state of a ``DynamicState`` ``(B, L, N + 1, 3)`` into ``lanes`` (line ``b L + k``)."""
-    nb, nl = state.r.shape[0], state.r.shape[1]
-    for b in range(nb):
-        for k in range(nl):
-            m = b * nl + k
-            for i in range(state.r.shape[2]):
-                for a in range(3):
-                    lanes.r[i, a, m] = state.r[b, k, i, a]
-                    lanes.v[i, a, m] = state.v[b, k, i, a]
-                    lanes.r_prev[i, a, m] = state.r_prev[b, k, i, a]
-                    lanes.v_prev[i, a, m] = state.v_prev[b, k, i, a]
+    """Copy the node state of a ``DynamicState`` ``(B, L, N + 1, 3)`` into ``lanes`` (line ``b L + k``).
+
+    Line ``m`` is lane ``m % W`` of block ``m // W``; the lanes past the last line take copies of it.
+    """
+    x = lanes.nodes
+    nb, nk, n1 = state.r.shape[0], state.r.shape[1], state.r.shape[2]
+    nl = nb * nk
+    if nl == 0:
+        return
+    nblk = x.shape[0] // (n1 * _REC)
+    for m in range(nblk * W):
+        b, k = divmod(min(m, nl - 1), nk)
+        blk, l = divmod(m, W)
+        for i in range(n1):
+            o = (blk * n1 + i) * _REC + l
+            for a in range(3):
+                x[_u(o + _R + a * W)] = state.r[b, k, i, a]
+                x[_u(o + _V + a * W)] = state.v[b, k, i, a]
+                x[_u(o + _RP + a * W)] = state.r_prev[b, k, i, a]
+                x[_u(o + _VP + a * W)] = state.v_prev[b, k, i, a]
 
 
 @njit(cache=True, error_model="numpy")
 def unpack(lanes, state):  # pragma: no cover - numba
     """Copy ``lanes`` back into the node state of a ``DynamicState`` (the inverse of :func:`pack`)."""
-    nb, nl = state.r.shape[0], state.r.shape[1]
+    x = lanes.nodes
+    nb, nk, n1 = state.r.shape[0], state.r.shape[1], state.r.shape[2]
     for b in range(nb):
-        for k in range(nl):
-            m = b * nl + k
-            for i in range(state.r.shape[2]):
+        for k in range(nk):
+            blk, l = divmod(b * nk + k, W)
+            for i in range(n1):
+                o = (blk * n1 + i) * _REC + l
                 for a in range(3):
-                    state.r[b, k, i, a] = lanes.r[i, a, m]
-                    state.v[b, k, i, a] = lanes.v[i, a, m]
-                    state.r_prev[b, k, i, a] = lanes.r_prev[i, a, m]
-                    state.v_prev[b, k, i, a] = lanes.v_prev[i, a, m]
+                    state.r[b, k, i, a] = x[_u(o + _R + a * W)]
+                    state.v[b, k, i, a] = x[_u(o + _V + a * W)]
+                    state.r_prev[b, k, i, a] = x[_u(o + _RP + a * W)]
+                    state.v_prev[b, k, i, a] = x[_u(o + _VP + a * W)]
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _node_forces(r, v, p, hb, w):  # pragma: no cover - numba
-    """``line_forces._node_forces`` with ``jac`` on every lane (the same operations per lane)."""
-    F, segf, sq, sa, sg, tang, am, bm, C, Kz = w.F, w.segf, w.sq, w.sa, w.sg, w.tang, w.am, w.bm, w.C, w.Kz
-    nl = r.shape[2]
+def _node_drag(
+    x, o, hb, tx, ty, tz, fx, fy, fz, cn, ct, kba, cba, zbed, band, kb, cb, area, mu, fric, vslip
+):  # pragma: no cover
+    """Weight already in ``fz``: drag, seabed and friction of one lane's node, with its damping matrix.
+
+    ``o`` is the lane's place in the node's record, ``(tx, ty, tz)`` the node tangent and
+    ``(fx, fy, fz)`` the net tension minus the weight. Stores the node force, ``Kz`` and ``C``.
+    """
+    vx, vy, vz = x[_u(o + _V2 + _X)], x[_u(o + _V2 + _Y)], x[_u(o + _V2 + _Z)]
+    vt = vx * tx + vy * ty + vz * tz
+    px, py, pz = vx - vt * tx, vy - vt * ty, vz - vt * tz
+    vp = math.sqrt(px * px + py * py + pz * pz)
+    avt = abs(vt)
+    fx -= cn * vp * px + ct * avt * vt * tx
+    fy -= cn * vp * py + ct * avt * vt * ty
+    fz -= cn * vp * pz + ct * avt * vt * tz
+    ip = cn / vp if vp > 0.0 else 0.0
+    ctt = 2.0 * ct * avt - cn * vp
+    cI = cn * vp
+    c00 = cI + ctt * tx * tx + ip * px * px
+    c11 = cI + ctt * ty * ty + ip * py * py
+    c22 = cI + ctt * tz * tz + ip * pz * pz
+    rz = x[_u(o + _R2 + _Z)]
+    near = rz < zbed + band + hb * max(-vz, 0.0)
+    x[_u(o + _KZ)] = kba if near else 0.0
+    c22 = c22 + cba if near else c22
+    below = rz < zbed
+    Bz = ((zbed - rz) * kb - vz * cb) * area
+    fz = fz + Bz if below else fz
+    fmax = mu * abs(Bz)
+    vh = math.sqrt(vx * vx + vy * vy)
+    ff = fmax * min(vh / vslip, 1.0)
+    slide = below and fric and vh > 0.0
+    fx = fx - ff * vx / vh if slide else fx
+    fy = fy - ff * vy / vh if slide else fy
+    cf = fmax / max(vh, vslip)
+    c00 = c00 + cf if below and fric else c00
+    c11 = c11 + cf if below and fric else c11
+    x[_u(o + _C00)] = c00
+    x[_u(o + _C11)] = c11
+    x[_u(o + _C22)] = c22
+    x[_u(o + _C01)] = ctt * tx * ty + ip * px * py
+    x[_u(o + _C02)] = ctt * tx * tz + ip * px * pz
+    x[_u(o + _C12)] = ctt * ty * tz + ip * py * pz
+    x[_u(o + _F + _X)] = fx
+    x[_u(o + _F + _Y)] = fy
+    x[_u(o + _F + _Z)] = fz
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _node_forces(x, b0, nw, p, hb):  # pragma: no cover - numba
+    """``line_forces._node_forces`` with ``jac`` on the lanes of one block (the same operations per lane).
+
+    ``b0`` is the block's first record; the forces are of the predicted state (rows ``_R2, _V2``).
+    """
     N = int(p[_N])
     l0 = p[_L0]
     cint = p[_CINT]
     kax = p[_EA] / l0
     for s in range(N):
-        for m in range(nl):
-            dx = r[s + 1, 0, m] - r[s, 0, m]
-            dy = r[s + 1, 1, m] - r[s, 1, m]
-            dz = r[s + 1, 2, m] - r[s, 2, m]
-            l = math.sqrt(dx * dx + dy * dy + dz * dz)
-            qx, qy, qz = dx / l, dy / l, dz / l
+        bs = b0 + s * _REC
+        for l in range(nw):
+            o = bs + l
+            o1 = o + _REC
+            dx = x[_u(o1 + _R2 + _X)] - x[_u(o + _R2 + _X)]
+            dy = x[_u(o1 + _R2 + _Y)] - x[_u(o + _R2 + _Y)]
+            dz = x[_u(o1 + _R2 + _Z)] - x[_u(o + _R2 + _Z)]
+            l_ = math.sqrt(dx * dx + dy * dy + dz * dz)
+            qx, qy, qz = dx / l_, dy / l_, dz / l_
             ldot = (
-                qx * (v[s + 1, 0, m] - v[s, 0, m])
-                + qy * (v[s + 1, 1, m] - v[s, 1, m])
-                + qz * (v[s + 1, 2, m] - v[s, 2, m])
+                qx * (x[_u(o1 + _V2 + _X)] - x[_u(o + _V2 + _X)])
+                + qy * (x[_u(o1 + _V2 + _Y)] - x[_u(o + _V2 + _Y)])
+                + qz * (x[_u(o1 + _V2 + _Z)] - x[_u(o + _V2 + _Z)])
             )
-            T = kax * (l - l0) if l > l0 else 0.0
-            sg[s, m] = T / l if l > l0 else 0.0
-            sa[s, m] = kax - T / l if l > l0 else 0.0
-            segf[s, m] = T + cint * ldot
-            sq[s, 0, m] = qx
-            sq[s, 1, m] = qy
-            sq[s, 2, m] = qz
-    A = 0.25 * math.pi * p[_D] * p[_D]
+            T = kax * (l_ - l0) if l_ > l0 else 0.0
+            x[_u(o + _SG)] = T / l_ if l_ > l0 else 0.0
+            x[_u(o + _SA)] = kax - T / l_ if l_ > l0 else 0.0
+            x[_u(o + _SEGF)] = T + cint * ldot
+            x[_u(o + _SQ + _X)] = qx
+            x[_u(o + _SQ + _Y)] = qy
+            x[_u(o + _SQ + _Z)] = qz
     rho = p[_RHO]
     cdn = 0.5 * rho * p[_CDN] * p[_D]
     cdt = 0.5 * rho * p[_CDT] * math.pi * p[_D]
@@ -179,252 +279,321 @@ def _node_forces(r, v, p, hb, w):  # pragma: no cover - numba
     mu = p[_MU]
     kb, cb, band, vslip, dia, wlen = p[_KB], p[_CB], p[_BAND], p[_VSLIP], p[_D], p[_WLEN]
     fric = mu > 0.0
-    for i in range(N + 1):
-        ln = l0 if (0 < i < N) else 0.5 * l0
-        am[i] = p[_MLEN] * ln + rho * A * ln * p[_CAN]
-        bm[i] = rho * A * ln * (p[_CAT] - p[_CAN])
-        # the net tension, and the unit tangent (the segment's at the ends)
-        if i == 0:
-            for m in range(nl):
-                F[0, 0, m] = 0.0 + segf[0, m] * sq[0, 0, m]
-                F[0, 1, m] = 0.0 + segf[0, m] * sq[0, 1, m]
-                F[0, 2, m] = 0.0 + segf[0, m] * sq[0, 2, m]
-                tang[0, 0, m] = sq[0, 0, m]
-                tang[0, 1, m] = sq[0, 1, m]
-                tang[0, 2, m] = sq[0, 2, m]
-        elif i == N:
-            for m in range(nl):
-                F[N, 0, m] = 0.0 - segf[N - 1, m] * sq[N - 1, 0, m]
-                F[N, 1, m] = 0.0 - segf[N - 1, m] * sq[N - 1, 1, m]
-                F[N, 2, m] = 0.0 - segf[N - 1, m] * sq[N - 1, 2, m]
-                tang[N, 0, m] = sq[N - 1, 0, m]
-                tang[N, 1, m] = sq[N - 1, 1, m]
-                tang[N, 2, m] = sq[N - 1, 2, m]
-        else:
-            for m in range(nl):
-                F[i, 0, m] = 0.0 + segf[i, m] * sq[i, 0, m] - segf[i - 1, m] * sq[i - 1, 0, m]
-                F[i, 1, m] = 0.0 + segf[i, m] * sq[i, 1, m] - segf[i - 1, m] * sq[i - 1, 1, m]
-                F[i, 2, m] = 0.0 + segf[i, m] * sq[i, 2, m] - segf[i - 1, m] * sq[i - 1, 2, m]
-                tx = r[i + 1, 0, m] - r[i - 1, 0, m]
-                ty = r[i + 1, 1, m] - r[i - 1, 1, m]
-                tz = r[i + 1, 2, m] - r[i - 1, 2, m]
-                tn = 1.0 / math.sqrt(tx * tx + ty * ty + tz * tz)
-                tang[i, 0, m] = tx * tn
-                tang[i, 1, m] = ty * tn
-                tang[i, 2, m] = tz * tn
-        cn = cdn * ln
-        ct = cdt * ln
-        area = dia * ln
-        kba = kb * area
-        cba = cb * area
-        wl = wlen * ln
-        # weight, drag, seabed and friction, with their damping matrix: one select per branch
-        for m in range(nl):
-            tx, ty, tz = tang[i, 0, m], tang[i, 1, m], tang[i, 2, m]
-            fx, fy, fz = F[i, 0, m], F[i, 1, m], F[i, 2, m] - wl
-            vx, vy, vz = v[i, 0, m], v[i, 1, m], v[i, 2, m]
-            vt = vx * tx + vy * ty + vz * tz
-            px, py, pz = vx - vt * tx, vy - vt * ty, vz - vt * tz
-            vp = math.sqrt(px * px + py * py + pz * pz)
-            avt = abs(vt)
-            fx -= cn * vp * px + ct * avt * vt * tx
-            fy -= cn * vp * py + ct * avt * vt * ty
-            fz -= cn * vp * pz + ct * avt * vt * tz
-            ip = cn / vp if vp > 0.0 else 0.0
-            ctt = 2.0 * ct * avt - cn * vp
-            cI = cn * vp
-            c00 = cI + ctt * tx * tx + ip * px * px
-            c11 = cI + ctt * ty * ty + ip * py * py
-            c22 = cI + ctt * tz * tz + ip * pz * pz
-            rz = r[i, 2, m]
-            near = rz < zbed + band + hb * max(-vz, 0.0)
-            Kz[i, m] = kba if near else 0.0
-            c22 = c22 + cba if near else c22
-            below = rz < zbed
-            Bz = ((zbed - rz) * kb - vz * cb) * area
-            fz = fz + Bz if below else fz
-            fmax = mu * abs(Bz)
-            vh = math.sqrt(vx * vx + vy * vy)
-            ff = fmax * min(vh / vslip, 1.0)
-            slide = below and fric and vh > 0.0
-            fx = fx - ff * vx / vh if slide else fx
-            fy = fy - ff * vy / vh if slide else fy
-            cf = fmax / max(vh, vslip)
-            c00 = c00 + cf if below and fric else c00
-            c11 = c11 + cf if below and fric else c11
-            C[i, 0, 0, m] = c00
-            C[i, 1, 1, m] = c11
-            C[i, 2, 2, m] = c22
-            C[i, 0, 1, m] = C[i, 1, 0, m] = ctt * tx * ty + ip * px * py
-            C[i, 0, 2, m] = C[i, 2, 0, m] = ctt * tx * tz + ip * px * pz
-            C[i, 1, 2, m] = C[i, 2, 1, m] = ctt * ty * tz + ip * py * pz
-            F[i, 0, m] = fx
-            F[i, 1, m] = fy
-            F[i, 2, m] = fz
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def _factor(w, N, cs, cg, cz):  # pragma: no cover - numba
-    """``dynamic._factor`` on every lane: coupling blocks and inverted block-Thomas pivots."""
-    sq, sa, sg, tang, am, bm, C, Kz, S, Winv, D = w.sq, w.sa, w.sg, w.tang, w.am, w.bm, w.C, w.Kz, w.S, w.Winv, w.D
-    nl = sq.shape[2]
-    for s in range(N):
-        for a in range(3):
-            for b in range(3):
-                for m in range(nl):
-                    S[s, a, b, m] = (cs + cg * sa[s, m]) * sq[s, a, m] * sq[s, b, m]
-        for a in range(3):
-            for m in range(nl):
-                S[s, a, a, m] += cg * sg[s, m]
+    # the ends: half segments, the segment's tangent; the net tension of the one segment
+    ln = 0.5 * l0
+    cn, ct, area = cdn * ln, cdt * ln, dia * ln
+    kba, cba, wl = kb * area, cb * area, wlen * ln
+    for l in range(nw):
+        o = b0 + l
+        tx, ty, tz = x[_u(o + _SQ + _X)], x[_u(o + _SQ + _Y)], x[_u(o + _SQ + _Z)]
+        x[_u(o + _TG + _X)] = tx
+        x[_u(o + _TG + _Y)] = ty
+        x[_u(o + _TG + _Z)] = tz
+        sf = x[_u(o + _SEGF)]
+        fx, fy, fz = 0.0 + sf * tx, 0.0 + sf * ty, 0.0 + sf * tz
+        _node_drag(x, o, hb, tx, ty, tz, fx, fy, fz - wl, cn, ct, kba, cba, zbed, band, kb, cb, area, mu, fric, vslip)
+    for l in range(nw):
+        o = b0 + N * _REC + l
+        os = o - _REC  # the last segment
+        tx, ty, tz = x[_u(os + _SQ + _X)], x[_u(os + _SQ + _Y)], x[_u(os + _SQ + _Z)]
+        x[_u(o + _TG + _X)] = tx
+        x[_u(o + _TG + _Y)] = ty
+        x[_u(o + _TG + _Z)] = tz
+        sf = x[_u(os + _SEGF)]
+        fx, fy, fz = 0.0 - sf * tx, 0.0 - sf * ty, 0.0 - sf * tz
+        _node_drag(x, o, hb, tx, ty, tz, fx, fy, fz - wl, cn, ct, kba, cba, zbed, band, kb, cb, area, mu, fric, vslip)
+    # the interior nodes: the tension of the two segments, the tangent of the two neighbours
+    ln = l0
+    cn, ct, area = cdn * ln, cdt * ln, dia * ln
+    kba, cba, wl = kb * area, cb * area, wlen * ln
     for i in range(1, N):
-        for a in range(3):
-            for b in range(3):
-                for m in range(nl):
-                    D[a, b, m] = (
-                        bm[i] * tang[i, a, m] * tang[i, b, m] + cz * C[i, a, b, m] + S[i - 1, a, b, m] + S[i, a, b, m]
-                    )
-            for m in range(nl):
-                D[a, a, m] += am[i]
-        for m in range(nl):
-            D[2, 2, m] += cg * Kz[i, m]
-        if i > 1:
-            j = i - 1
-            for m in range(nl):
-                al = cs + cg * sa[j, m]
-                be = cg * sg[j, m]
-                q0, q1, q2 = sq[j, 0, m], sq[j, 1, m], sq[j, 2, m]
-                W = Winv[j]
-                g0 = W[0, 0, m] * q0 + W[0, 1, m] * q1 + W[0, 2, m] * q2
-                g1 = W[1, 0, m] * q0 + W[1, 1, m] * q1 + W[1, 2, m] * q2
-                g2 = W[2, 0, m] * q0 + W[2, 1, m] * q1 + W[2, 2, m] * q2
-                a2s = al * al * (q0 * g0 + q1 * g1 + q2 * g2)
-                ab = al * be
-                b2 = be * be
-                D[0, 0, m] -= a2s * q0 * q0 + ab * (q0 * g0 + g0 * q0) + b2 * W[0, 0, m]
-                D[0, 1, m] -= a2s * q0 * q1 + ab * (q0 * g1 + g0 * q1) + b2 * W[0, 1, m]
-                D[0, 2, m] -= a2s * q0 * q2 + ab * (q0 * g2 + g0 * q2) + b2 * W[0, 2, m]
-                D[1, 0, m] -= a2s * q1 * q0 + ab * (q1 * g0 + g1 * q0) + b2 * W[1, 0, m]
-                D[1, 1, m] -= a2s * q1 * q1 + ab * (q1 * g1 + g1 * q1) + b2 * W[1, 1, m]
-                D[1, 2, m] -= a2s * q1 * q2 + ab * (q1 * g2 + g1 * q2) + b2 * W[1, 2, m]
-                D[2, 0, m] -= a2s * q2 * q0 + ab * (q2 * g0 + g2 * q0) + b2 * W[2, 0, m]
-                D[2, 1, m] -= a2s * q2 * q1 + ab * (q2 * g1 + g2 * q1) + b2 * W[2, 1, m]
-                D[2, 2, m] -= a2s * q2 * q2 + ab * (q2 * g2 + g2 * q2) + b2 * W[2, 2, m]
-        out = Winv[i]
-        for m in range(nl):
-            a, b, c = D[0, 0, m], D[0, 1, m], D[0, 2, m]
-            d, e, f = D[1, 0, m], D[1, 1, m], D[1, 2, m]
-            g, h, k = D[2, 0, m], D[2, 1, m], D[2, 2, m]
-            c0 = e * k - f * h
-            c1 = f * g - d * k
-            c2 = d * h - e * g
-            det = a * c0 + b * c1 + c * c2
-            rr = 1.0 / det
-            out[0, 0, m] = c0 * rr
-            out[0, 1, m] = (c * h - b * k) * rr
-            out[0, 2, m] = (b * f - c * e) * rr
-            out[1, 0, m] = c1 * rr
-            out[1, 1, m] = (a * k - c * g) * rr
-            out[1, 2, m] = (c * d - a * f) * rr
-            out[2, 0, m] = c2 * rr
-            out[2, 1, m] = (b * g - a * h) * rr
-            out[2, 2, m] = (a * e - b * d) * rr
+        bi = b0 + i * _REC
+        for l in range(nw):
+            o = bi + l
+            op, on = o - _REC, o + _REC
+            sf, sfp = x[_u(o + _SEGF)], x[_u(op + _SEGF)]
+            fx = 0.0 + sf * x[_u(o + _SQ + _X)] - sfp * x[_u(op + _SQ + _X)]
+            fy = 0.0 + sf * x[_u(o + _SQ + _Y)] - sfp * x[_u(op + _SQ + _Y)]
+            fz = 0.0 + sf * x[_u(o + _SQ + _Z)] - sfp * x[_u(op + _SQ + _Z)]
+            tx = x[_u(on + _R2 + _X)] - x[_u(op + _R2 + _X)]
+            ty = x[_u(on + _R2 + _Y)] - x[_u(op + _R2 + _Y)]
+            tz = x[_u(on + _R2 + _Z)] - x[_u(op + _R2 + _Z)]
+            tn = 1.0 / math.sqrt(tx * tx + ty * ty + tz * tz)
+            tx, ty, tz = tx * tn, ty * tn, tz * tn
+            x[_u(o + _TG + _X)] = tx
+            x[_u(o + _TG + _Y)] = ty
+            x[_u(o + _TG + _Z)] = tz
+            _node_drag(
+                x, o, hb, tx, ty, tz, fx, fy, fz - wl, cn, ct, kba, cba, zbed, band, kb, cb, area, mu, fric, vslip
+            )
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _solve_blocks(S, Winv, b, x, N):  # pragma: no cover - numba
-    """``dynamic._solve_blocks`` on every lane."""
-    nl = b.shape[2]
-    for a in range(3):
-        for m in range(nl):
-            x[1, a, m] = b[1, a, m]
+def _pivot(x, o, am, bm, cg, cz):  # pragma: no cover - numba
+    """The block-Thomas pivot of one lane's node before the elimination of its predecessor.
+
+    ``bm t t' + cz C + S[i - 1] + S[i]`` plus ``am`` on the diagonal and ``cg Kz`` on ``zz``
+    (``dynamic._factor``), from the node's record at ``o``; returns its nine entries row by row.
+    """
+    op = o - _REC
+    t0, t1, t2 = x[_u(o + _TG + _X)], x[_u(o + _TG + _Y)], x[_u(o + _TG + _Z)]
+    c00, c11, c22 = x[_u(o + _C00)], x[_u(o + _C11)], x[_u(o + _C22)]
+    c01, c02, c12 = x[_u(o + _C01)], x[_u(o + _C02)], x[_u(o + _C12)]
+    d00 = bm * t0 * t0 + cz * c00 + x[_u(op + _S + 0 * W)] + x[_u(o + _S + 0 * W)]
+    d01 = bm * t0 * t1 + cz * c01 + x[_u(op + _S + 1 * W)] + x[_u(o + _S + 1 * W)]
+    d02 = bm * t0 * t2 + cz * c02 + x[_u(op + _S + 2 * W)] + x[_u(o + _S + 2 * W)]
+    d10 = bm * t1 * t0 + cz * c01 + x[_u(op + _S + 3 * W)] + x[_u(o + _S + 3 * W)]
+    d11 = bm * t1 * t1 + cz * c11 + x[_u(op + _S + 4 * W)] + x[_u(o + _S + 4 * W)]
+    d12 = bm * t1 * t2 + cz * c12 + x[_u(op + _S + 5 * W)] + x[_u(o + _S + 5 * W)]
+    d20 = bm * t2 * t0 + cz * c02 + x[_u(op + _S + 6 * W)] + x[_u(o + _S + 6 * W)]
+    d21 = bm * t2 * t1 + cz * c12 + x[_u(op + _S + 7 * W)] + x[_u(o + _S + 7 * W)]
+    d22 = bm * t2 * t2 + cz * c22 + x[_u(op + _S + 8 * W)] + x[_u(o + _S + 8 * W)]
+    d00 += am
+    d11 += am
+    d22 += am
+    d22 += cg * x[_u(o + _KZ)]
+    return d00, d01, d02, d10, d11, d12, d20, d21, d22
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _invert(x, o, a, b, c, d, e, f, g, h, k):  # pragma: no cover - numba
+    """Store the inverse of the pivot ``[[a, b, c], [d, e, f], [g, h, k]]`` in the record at ``o``."""
+    c0 = e * k - f * h
+    c1 = f * g - d * k
+    c2 = d * h - e * g
+    det = a * c0 + b * c1 + c * c2
+    rr = 1.0 / det
+    x[_u(o + _WI + 0 * W)] = c0 * rr
+    x[_u(o + _WI + 1 * W)] = (c * h - b * k) * rr
+    x[_u(o + _WI + 2 * W)] = (b * f - c * e) * rr
+    x[_u(o + _WI + 3 * W)] = c1 * rr
+    x[_u(o + _WI + 4 * W)] = (a * k - c * g) * rr
+    x[_u(o + _WI + 5 * W)] = (c * d - a * f) * rr
+    x[_u(o + _WI + 6 * W)] = c2 * rr
+    x[_u(o + _WI + 7 * W)] = (b * g - a * h) * rr
+    x[_u(o + _WI + 8 * W)] = (a * e - b * d) * rr
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _factor(x, b0, nw, N, am, bm, cs, cg, cz):  # pragma: no cover - numba
+    """``dynamic._factor`` on the lanes of one block: coupling blocks and inverted block-Thomas pivots.
+
+    ``am, bm`` are the isotropic and axial-minus-normal added mass of an interior node.
+    """
+    for s in range(N):
+        bs = b0 + s * _REC
+        for l in range(nw):
+            o = bs + l
+            ca = cs + cg * x[_u(o + _SA)]
+            q0, q1, q2 = x[_u(o + _SQ + _X)], x[_u(o + _SQ + _Y)], x[_u(o + _SQ + _Z)]
+            gs = cg * x[_u(o + _SG)]
+            x[_u(o + _S + 0 * W)] = ca * q0 * q0 + gs
+            x[_u(o + _S + 1 * W)] = ca * q0 * q1
+            x[_u(o + _S + 2 * W)] = ca * q0 * q2
+            x[_u(o + _S + 3 * W)] = ca * q1 * q0
+            x[_u(o + _S + 4 * W)] = ca * q1 * q1 + gs
+            x[_u(o + _S + 5 * W)] = ca * q1 * q2
+            x[_u(o + _S + 6 * W)] = ca * q2 * q0
+            x[_u(o + _S + 7 * W)] = ca * q2 * q1
+            x[_u(o + _S + 8 * W)] = ca * q2 * q2 + gs
+    # node 1: no predecessor to eliminate
+    for l in range(nw):
+        o = b0 + _REC + l
+        d00, d01, d02, d10, d11, d12, d20, d21, d22 = _pivot(x, o, am, bm, cg, cz)
+        _invert(x, o, d00, d01, d02, d10, d11, d12, d20, d21, d22)
     for i in range(2, N):
-        W, Si = Winv[i - 1], S[i - 1]
-        for m in range(nl):
-            t0 = W[0, 0, m] * x[i - 1, 0, m] + W[0, 1, m] * x[i - 1, 1, m] + W[0, 2, m] * x[i - 1, 2, m]
-            t1 = W[1, 0, m] * x[i - 1, 0, m] + W[1, 1, m] * x[i - 1, 1, m] + W[1, 2, m] * x[i - 1, 2, m]
-            t2 = W[2, 0, m] * x[i - 1, 0, m] + W[2, 1, m] * x[i - 1, 1, m] + W[2, 2, m] * x[i - 1, 2, m]
-            x[i, 0, m] = b[i, 0, m] + Si[0, 0, m] * t0 + Si[0, 1, m] * t1 + Si[0, 2, m] * t2
-            x[i, 1, m] = b[i, 1, m] + Si[1, 0, m] * t0 + Si[1, 1, m] * t1 + Si[1, 2, m] * t2
-            x[i, 2, m] = b[i, 2, m] + Si[2, 0, m] * t0 + Si[2, 1, m] * t1 + Si[2, 2, m] * t2
-    W = Winv[N - 1]
-    for m in range(nl):
-        t0, t1, t2 = x[N - 1, 0, m], x[N - 1, 1, m], x[N - 1, 2, m]
-        x[N - 1, 0, m] = W[0, 0, m] * t0 + W[0, 1, m] * t1 + W[0, 2, m] * t2
-        x[N - 1, 1, m] = W[1, 0, m] * t0 + W[1, 1, m] * t1 + W[1, 2, m] * t2
-        x[N - 1, 2, m] = W[2, 0, m] * t0 + W[2, 1, m] * t1 + W[2, 2, m] * t2
-    for i in range(N - 2, 0, -1):
-        W, Si = Winv[i], S[i]
-        for m in range(nl):
-            t0 = x[i, 0, m] + Si[0, 0, m] * x[i + 1, 0, m] + Si[0, 1, m] * x[i + 1, 1, m] + Si[0, 2, m] * x[i + 1, 2, m]
-            t1 = x[i, 1, m] + Si[1, 0, m] * x[i + 1, 0, m] + Si[1, 1, m] * x[i + 1, 1, m] + Si[1, 2, m] * x[i + 1, 2, m]
-            t2 = x[i, 2, m] + Si[2, 0, m] * x[i + 1, 0, m] + Si[2, 1, m] * x[i + 1, 1, m] + Si[2, 2, m] * x[i + 1, 2, m]
-            x[i, 0, m] = W[0, 0, m] * t0 + W[0, 1, m] * t1 + W[0, 2, m] * t2
-            x[i, 1, m] = W[1, 0, m] * t0 + W[1, 1, m] * t1 + W[1, 2, m] * t2
-            x[i, 2, m] = W[2, 0, m] * t0 + W[2, 1, m] * t1 + W[2, 2, m] * t2
+        bi = b0 + i * _REC
+        for l in range(nw):
+            o = bi + l
+            oj = o - _REC  # node j = i - 1 and segment j
+            d00, d01, d02, d10, d11, d12, d20, d21, d22 = _pivot(x, o, am, bm, cg, cz)
+            al = cs + cg * x[_u(oj + _SA)]
+            be = cg * x[_u(oj + _SG)]
+            q0, q1, q2 = x[_u(oj + _SQ + _X)], x[_u(oj + _SQ + _Y)], x[_u(oj + _SQ + _Z)]
+            w00, w01, w02 = x[_u(oj + _WI + 0 * W)], x[_u(oj + _WI + 1 * W)], x[_u(oj + _WI + 2 * W)]
+            w10, w11, w12 = x[_u(oj + _WI + 3 * W)], x[_u(oj + _WI + 4 * W)], x[_u(oj + _WI + 5 * W)]
+            w20, w21, w22 = x[_u(oj + _WI + 6 * W)], x[_u(oj + _WI + 7 * W)], x[_u(oj + _WI + 8 * W)]
+            g0 = w00 * q0 + w01 * q1 + w02 * q2
+            g1 = w10 * q0 + w11 * q1 + w12 * q2
+            g2 = w20 * q0 + w21 * q1 + w22 * q2
+            a2s = al * al * (q0 * g0 + q1 * g1 + q2 * g2)
+            ab = al * be
+            b2 = be * be
+            d00 -= a2s * q0 * q0 + ab * (q0 * g0 + g0 * q0) + b2 * w00
+            d01 -= a2s * q0 * q1 + ab * (q0 * g1 + g0 * q1) + b2 * w01
+            d02 -= a2s * q0 * q2 + ab * (q0 * g2 + g0 * q2) + b2 * w02
+            d10 -= a2s * q1 * q0 + ab * (q1 * g0 + g1 * q0) + b2 * w10
+            d11 -= a2s * q1 * q1 + ab * (q1 * g1 + g1 * q1) + b2 * w11
+            d12 -= a2s * q1 * q2 + ab * (q1 * g2 + g1 * q2) + b2 * w12
+            d20 -= a2s * q2 * q0 + ab * (q2 * g0 + g2 * q0) + b2 * w20
+            d21 -= a2s * q2 * q1 + ab * (q2 * g1 + g2 * q1) + b2 * w21
+            d22 -= a2s * q2 * q2 + ab * (q2 * g2 + g2 * q2) + b2 * w22
+            _invert(x, o, d00, d01, d02, d10, d11, d12, d20, d21, d22)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _bdf2(ls, rf1, vf1, h, p, w):  # pragma: no cover - numba
-    """``dynamic._bdf2_step`` on every lane; fairleads at ``rf1, vf1 (3, nl)`` at the step's end."""
-    r, v, rp, vp = ls.r, ls.v, ls.r_prev, ls.v_prev
-    r2, v2, xb, dv, kx, rhs = w.r2, w.v2, w.xb, w.dv, w.kx, w.rhs
-    sq, sa, sg, Kz, tang, am, bm, F = w.sq, w.sa, w.sg, w.Kz, w.tang, w.am, w.bm, w.F
-    nl = r.shape[2]
+def _wi_times(x, o, t0, t1, t2):  # pragma: no cover - numba
+    """The inverted pivot of the record at ``o`` times ``(t0, t1, t2)``."""
+    y0 = x[_u(o + _WI + 0 * W)] * t0 + x[_u(o + _WI + 1 * W)] * t1 + x[_u(o + _WI + 2 * W)] * t2
+    y1 = x[_u(o + _WI + 3 * W)] * t0 + x[_u(o + _WI + 4 * W)] * t1 + x[_u(o + _WI + 5 * W)] * t2
+    y2 = x[_u(o + _WI + 6 * W)] * t0 + x[_u(o + _WI + 7 * W)] * t1 + x[_u(o + _WI + 8 * W)] * t2
+    return y0, y1, y2
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _solve_blocks(x, b0, nw, N):  # pragma: no cover - numba
+    """``dynamic._solve_blocks`` on the lanes of one block: rows ``_RHS`` in, the solution in ``_DV``."""
+    for l in range(nw):
+        o = b0 + _REC + l
+        x[_u(o + _DV + _X)] = x[_u(o + _RHS + _X)]
+        x[_u(o + _DV + _Y)] = x[_u(o + _RHS + _Y)]
+        x[_u(o + _DV + _Z)] = x[_u(o + _RHS + _Z)]
+    for i in range(2, N):
+        bi = b0 + i * _REC
+        for l in range(nw):
+            o = bi + l
+            op = o - _REC
+            t0, t1, t2 = _wi_times(x, op, x[_u(op + _DV + _X)], x[_u(op + _DV + _Y)], x[_u(op + _DV + _Z)])
+            x[_u(o + _DV + _X)] = (
+                x[_u(o + _RHS + _X)]
+                + x[_u(op + _S + 0 * W)] * t0
+                + x[_u(op + _S + 1 * W)] * t1
+                + x[_u(op + _S + 2 * W)] * t2
+            )
+            x[_u(o + _DV + _Y)] = (
+                x[_u(o + _RHS + _Y)]
+                + x[_u(op + _S + 3 * W)] * t0
+                + x[_u(op + _S + 4 * W)] * t1
+                + x[_u(op + _S + 5 * W)] * t2
+            )
+            x[_u(o + _DV + _Z)] = (
+                x[_u(o + _RHS + _Z)]
+                + x[_u(op + _S + 6 * W)] * t0
+                + x[_u(op + _S + 7 * W)] * t1
+                + x[_u(op + _S + 8 * W)] * t2
+            )
+    bl = b0 + (N - 1) * _REC
+    for l in range(nw):
+        o = bl + l
+        y0, y1, y2 = _wi_times(x, o, x[_u(o + _DV + _X)], x[_u(o + _DV + _Y)], x[_u(o + _DV + _Z)])
+        x[_u(o + _DV + _X)] = y0
+        x[_u(o + _DV + _Y)] = y1
+        x[_u(o + _DV + _Z)] = y2
+    for i in range(N - 2, 0, -1):
+        bi = b0 + i * _REC
+        for l in range(nw):
+            o = bi + l
+            on = o + _REC
+            n0, n1, n2 = x[_u(on + _DV + _X)], x[_u(on + _DV + _Y)], x[_u(on + _DV + _Z)]
+            t0 = (
+                x[_u(o + _DV + _X)]
+                + x[_u(o + _S + 0 * W)] * n0
+                + x[_u(o + _S + 1 * W)] * n1
+                + x[_u(o + _S + 2 * W)] * n2
+            )
+            t1 = (
+                x[_u(o + _DV + _Y)]
+                + x[_u(o + _S + 3 * W)] * n0
+                + x[_u(o + _S + 4 * W)] * n1
+                + x[_u(o + _S + 5 * W)] * n2
+            )
+            t2 = (
+                x[_u(o + _DV + _Z)]
+                + x[_u(o + _S + 6 * W)] * n0
+                + x[_u(o + _S + 7 * W)] * n1
+                + x[_u(o + _S + 8 * W)] * n2
+            )
+            y0, y1, y2 = _wi_times(x, o, t0, t1, t2)
+            x[_u(o + _DV + _X)] = y0
+            x[_u(o + _DV + _Y)] = y1
+            x[_u(o + _DV + _Z)] = y2
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _bdf2(x, fair, blk, nw, h, p):  # pragma: no cover - numba
+    """``dynamic._bdf2_step`` on the lanes of block ``blk``; its fairleads at the step's end in ``fair[2:4]``."""
     N = int(p[_N])
+    b0 = blk * (N + 1) * _REC
+    bN = b0 + N * _REC
     beta = 2.0 * h / 3.0
     for a in range(3):
-        for m in range(nl):
-            r2[0, a, m] = r[0, a, m]
-            v2[0, a, m] = 0.0
-            r2[N, a, m] = rf1[a, m]
-            v2[N, a, m] = vf1[a, m]
-            kx[0, a, m] = 0.0
-            kx[N, a, m] = 0.0
+        c = a * W
+        for l in range(nw):
+            o, oN = b0 + c + l, bN + c + l
+            x[_u(o + _R2)] = x[_u(o + _R)]
+            x[_u(o + _V2)] = 0.0
+            x[_u(oN + _R2)] = fair[2, a, blk, l]
+            x[_u(oN + _V2)] = fair[3, a, blk, l]
+            x[_u(o + _KX)] = 0.0
+            x[_u(oN + _KX)] = 0.0
     for i in range(1, N):
         for a in range(3):
-            for m in range(nl):
-                r2[i, a, m] = 2.0 * r[i, a, m] - rp[i, a, m]
-                v2[i, a, m] = 2.0 * v[i, a, m] - vp[i, a, m]
-                xb[i, a, m] = (4.0 * r[i, a, m] - rp[i, a, m]) / 3.0
-                dv[i, a, m] = (4.0 * v[i, a, m] - vp[i, a, m]) / 3.0 - v2[i, a, m]
-                kx[i, a, m] = xb[i, a, m] + beta * v2[i, a, m] - r2[i, a, m]
-    _node_forces(r2, v2, p, h, w)
-    _factor(w, N, beta * p[_CINT], beta * beta, beta)
+            bc = b0 + i * _REC + a * W  # component a of node i
+            for l in range(nw):
+                o = bc + l
+                r, rp = x[_u(o + _R)], x[_u(o + _RP)]
+                v, vp = x[_u(o + _V)], x[_u(o + _VP)]
+                r2 = 2.0 * r - rp
+                v2 = 2.0 * v - vp
+                xb = (4.0 * r - rp) / 3.0
+                x[_u(o + _R2)] = r2
+                x[_u(o + _V2)] = v2
+                x[_u(o + _XB)] = xb
+                x[_u(o + _DV)] = (4.0 * v - vp) / 3.0 - v2
+                x[_u(o + _KX)] = xb + beta * v2 - r2
+    _node_forces(x, b0, nw, p, h)
+    l0 = p[_L0]
+    A = 0.25 * math.pi * p[_D] * p[_D]
+    rho = p[_RHO]
+    am = p[_MLEN] * l0 + rho * A * l0 * p[_CAN]  # an interior node's
+    bm = rho * A * l0 * (p[_CAT] - p[_CAN])
+    _factor(x, b0, nw, N, am, bm, beta * p[_CINT], beta * beta, beta)
     for i in range(1, N):
-        for m in range(nl):
+        bi = b0 + i * _REC
+        for l in range(nw):
             # dynamic._kx_times: segment springs to both neighbours + seabed spring
-            ax = kx[i - 1, 0, m] - kx[i, 0, m]
-            ay = kx[i - 1, 1, m] - kx[i, 1, m]
-            az = kx[i - 1, 2, m] - kx[i, 2, m]
-            bx = kx[i + 1, 0, m] - kx[i, 0, m]
-            by = kx[i + 1, 1, m] - kx[i, 1, m]
-            bz = kx[i + 1, 2, m] - kx[i, 2, m]
-            qa = sa[i - 1, m] * (sq[i - 1, 0, m] * ax + sq[i - 1, 1, m] * ay + sq[i - 1, 2, m] * az)
-            qb = sa[i, m] * (sq[i, 0, m] * bx + sq[i, 1, m] * by + sq[i, 2, m] * bz)
-            k0 = qa * sq[i - 1, 0, m] + sg[i - 1, m] * ax + qb * sq[i, 0, m] + sg[i, m] * bx
-            k1 = qa * sq[i - 1, 1, m] + sg[i - 1, m] * ay + qb * sq[i, 1, m] + sg[i, m] * by
-            k2 = qa * sq[i - 1, 2, m] + sg[i - 1, m] * az + qb * sq[i, 2, m] + sg[i, m] * bz - Kz[i, m] * kx[i, 2, m]
-            t0, t1, t2 = tang[i, 0, m], tang[i, 1, m], tang[i, 2, m]
-            d0, d1, d2 = dv[i, 0, m], dv[i, 1, m], dv[i, 2, m]
-            tv = bm[i] * (t0 * d0 + t1 * d1 + t2 * d2)
-            rhs[i, 0, m] = am[i] * d0 + tv * t0 + beta * (F[i, 0, m] + k0)
-            rhs[i, 1, m] = am[i] * d1 + tv * t1 + beta * (F[i, 1, m] + k1)
-            rhs[i, 2, m] = am[i] * d2 + tv * t2 + beta * (F[i, 2, m] + k2)
-    _solve_blocks(w.S, w.Winv, rhs, dv, N)
+            o = bi + l
+            op, on = o - _REC, o + _REC
+            kx0, kx1, kx2 = x[_u(o + _KX + _X)], x[_u(o + _KX + _Y)], x[_u(o + _KX + _Z)]
+            ax = x[_u(op + _KX + _X)] - kx0
+            ay = x[_u(op + _KX + _Y)] - kx1
+            az = x[_u(op + _KX + _Z)] - kx2
+            bx = x[_u(on + _KX + _X)] - kx0
+            by = x[_u(on + _KX + _Y)] - kx1
+            bz = x[_u(on + _KX + _Z)] - kx2
+            pq0, pq1, pq2 = x[_u(op + _SQ + _X)], x[_u(op + _SQ + _Y)], x[_u(op + _SQ + _Z)]
+            sq0, sq1, sq2 = x[_u(o + _SQ + _X)], x[_u(o + _SQ + _Y)], x[_u(o + _SQ + _Z)]
+            psg, ssg = x[_u(op + _SG)], x[_u(o + _SG)]
+            qa = x[_u(op + _SA)] * (pq0 * ax + pq1 * ay + pq2 * az)
+            qb = x[_u(o + _SA)] * (sq0 * bx + sq1 * by + sq2 * bz)
+            k0 = qa * pq0 + psg * ax + qb * sq0 + ssg * bx
+            k1 = qa * pq1 + psg * ay + qb * sq1 + ssg * by
+            k2 = qa * pq2 + psg * az + qb * sq2 + ssg * bz - x[_u(o + _KZ)] * kx2
+            t0, t1, t2 = x[_u(o + _TG + _X)], x[_u(o + _TG + _Y)], x[_u(o + _TG + _Z)]
+            d0, d1, d2 = x[_u(o + _DV + _X)], x[_u(o + _DV + _Y)], x[_u(o + _DV + _Z)]
+            tv = bm * (t0 * d0 + t1 * d1 + t2 * d2)
+            x[_u(o + _RHS + _X)] = am * d0 + tv * t0 + beta * (x[_u(o + _F + _X)] + k0)
+            x[_u(o + _RHS + _Y)] = am * d1 + tv * t1 + beta * (x[_u(o + _F + _Y)] + k1)
+            x[_u(o + _RHS + _Z)] = am * d2 + tv * t2 + beta * (x[_u(o + _F + _Z)] + k2)
+    _solve_blocks(x, b0, nw, N)
     for i in range(1, N):
         for a in range(3):
-            for m in range(nl):
-                vn = v2[i, a, m] + dv[i, a, m]
-                rp[i, a, m] = r[i, a, m]
-                vp[i, a, m] = v[i, a, m]
-                v[i, a, m] = vn
-                r[i, a, m] = xb[i, a, m] + beta * vn
+            bc = b0 + i * _REC + a * W
+            for l in range(nw):
+                o = bc + l
+                vn = x[_u(o + _V2)] + x[_u(o + _DV)]
+                x[_u(o + _RP)] = x[_u(o + _R)]
+                x[_u(o + _VP)] = x[_u(o + _V)]
+                x[_u(o + _V)] = vn
+                x[_u(o + _R)] = x[_u(o + _XB)] + beta * vn
     for a in range(3):
-        for m in range(nl):
-            rp[N, a, m] = r[N, a, m]
-            vp[N, a, m] = v[N, a, m]
-            r[N, a, m] = rf1[a, m]
-            v[N, a, m] = vf1[a, m]
+        c = a * W
+        for l in range(nw):
+            o = bN + c + l
+            x[_u(o + _RP)] = x[_u(o + _R)]
+            x[_u(o + _VP)] = x[_u(o + _V)]
+            x[_u(o + _R)] = fair[2, a, blk, l]
+            x[_u(o + _V)] = fair[3, a, blk, l]
 
 
 @njit(cache=True, error_model="numpy")
@@ -458,57 +627,59 @@ def step_lanes(ls, r_new, v_new, dt, nsub, p, w, forces, tension):  # pragma: no
     FloatingPointError
         On a non-finite fairlead tension.
     """
-    r, v = ls.r, ls.v
-    nb, nk = r_new.shape[0], r_new.shape[1]
-    nl = r.shape[2]
-    N = int(p[_N])
+    x = ls.nodes
     fair = w.fair
-    p0, v0, fb, vb = fair[0], fair[1], fair[2], fair[3]
-    for a in range(3):
-        for m in range(nl):
-            p0[a, m] = r[N, a, m]
-            v0[a, m] = v[N, a, m]
+    nb, nk = r_new.shape[0], r_new.shape[1]
+    nl = nb * nk
+    nblk, nw = fair.shape[2], fair.shape[3]  # nw == W, but not a constant to the compiler (docstring)
+    N = int(p[_N])
+    rN = N * _REC
     h = dt / nsub
-    for j in range(nsub):
-        s = (j + 1) / nsub
-        s2 = s * s
-        s3 = s2 * s
-        h00 = 2 * s3 - 3 * s2 + 1
-        h10 = s3 - 2 * s2 + s
-        h01 = -2 * s3 + 3 * s2
-        h11 = s3 - s2
-        d00 = (6 * s2 - 6 * s) / dt
-        d10 = 3 * s2 - 4 * s + 1
-        d01 = (-6 * s2 + 6 * s) / dt
-        d11 = 3 * s2 - 2 * s
-        for b in range(nb):
-            for k in range(nk):
-                m = b * nk + k
+    # block after block, each through all its substeps (the lanes are independent)
+    for blk in range(nblk):
+        for l in range(nw):
+            o = blk * (N + 1) * _REC + rN + l
+            for a in range(3):
+                fair[0, a, blk, l] = x[_u(o + _R + a * W)]
+                fair[1, a, blk, l] = x[_u(o + _V + a * W)]
+        for j in range(nsub):
+            s = (j + 1) / nsub
+            s2 = s * s
+            s3 = s2 * s
+            h00 = 2 * s3 - 3 * s2 + 1
+            h10 = s3 - 2 * s2 + s
+            h01 = -2 * s3 + 3 * s2
+            h11 = s3 - s2
+            d00 = (6 * s2 - 6 * s) / dt
+            d10 = 3 * s2 - 4 * s + 1
+            d01 = (-6 * s2 + 6 * s) / dt
+            d11 = 3 * s2 - 2 * s
+            for l in range(nw):
+                b, k = divmod(min(blk * W + l, nl - 1), nk)  # padded lanes follow the last line
                 for a in range(3):
                     p1, v1 = r_new[b, k, a], v_new[b, k, a]
-                    fb[a, m] = h00 * p0[a, m] + h10 * dt * v0[a, m] + h01 * p1 + h11 * dt * v1
-                    vb[a, m] = d00 * p0[a, m] + d10 * v0[a, m] + d01 * p1 + d11 * v1
-        _bdf2(ls, fb, vb, h, p, w)
+                    p0, v0 = fair[0, a, blk, l], fair[1, a, blk, l]
+                    fair[2, a, blk, l] = h00 * p0 + h10 * dt * v0 + h01 * p1 + h11 * dt * v1
+                    fair[3, a, blk, l] = d00 * p0 + d10 * v0 + d01 * p1 + d11 * v1
+            _bdf2(x, fair, blk, nw, h, p)
     # dynamic._end_force: the net force of the fairlead node without its inertia
     l0 = p[_L0]
     ln = 0.5 * l0
     cn = 0.5 * p[_RHO] * p[_CDN] * p[_D] * ln
     for b in range(nb):
         for k in range(nk):
-            m = b * nk + k
-            dx = r[N, 0, m] - r[N - 1, 0, m]
-            dy = r[N, 1, m] - r[N - 1, 1, m]
-            dz = r[N, 2, m] - r[N - 1, 2, m]
-            l = math.sqrt(dx * dx + dy * dy + dz * dz)
-            qx, qy, qz = dx / l, dy / l, dz / l
-            ldot = (
-                qx * (v[N, 0, m] - v[N - 1, 0, m])
-                + qy * (v[N, 1, m] - v[N - 1, 1, m])
-                + qz * (v[N, 2, m] - v[N - 1, 2, m])
-            )
-            T = p[_EA] / l0 * (l - l0) if l > l0 else 0.0
+            blk, l = divmod(b * nk + k, W)
+            o = blk * (N + 1) * _REC + rN + l
+            om = o - _REC
+            dx = x[_u(o + _R + _X)] - x[_u(om + _R + _X)]
+            dy = x[_u(o + _R + _Y)] - x[_u(om + _R + _Y)]
+            dz = x[_u(o + _R + _Z)] - x[_u(om + _R + _Z)]
+            l_ = math.sqrt(dx * dx + dy * dy + dz * dz)
+            qx, qy, qz = dx / l_, dy / l_, dz / l_
+            vx, vy, vz = x[_u(o + _V + _X)], x[_u(o + _V + _Y)], x[_u(o + _V + _Z)]
+            ldot = qx * (vx - x[_u(om + _V + _X)]) + qy * (vy - x[_u(om + _V + _Y)]) + qz * (vz - x[_u(om + _V + _Z)])
+            T = p[_EA] / l0 * (l_ - l0) if l_ > l0 else 0.0
             f = T + p[_CINT] * ldot
-            vx, vy, vz = v[N, 0, m], v[N, 1, m], v[N, 2, m]
             vt = vx * qx + vy * qy + vz * qz
             px, py, pz = vx - vt * qx, vy - vt * qy, vz - vt * qz
             vp = math.sqrt(px * px + py * py + pz * pz)
@@ -517,8 +688,9 @@ def step_lanes(ls, r_new, v_new, dt, nsub, p, w, forces, tension):  # pragma: no
             out[0] = -f * qx - cn * vp * px - ct * vt * qx
             out[1] = -f * qy - cn * vp * py - ct * vt * qy
             out[2] = -f * qz - cn * vp * pz - ct * vt * qz - p[_WLEN] * ln
-            if r[N, 2, m] < p[_ZBED]:
-                out[2] += ((p[_ZBED] - r[N, 2, m]) * p[_KB] - vz * p[_CB]) * p[_D] * ln
+            rz = x[_u(o + _R + _Z)]
+            if rz < p[_ZBED]:
+                out[2] += ((p[_ZBED] - rz) * p[_KB] - vz * p[_CB]) * p[_D] * ln
             tension[b, k] = math.sqrt(out[0] ** 2 + out[1] ** 2 + out[2] ** 2)
             if not math.isfinite(tension[b, k]):
                 raise FloatingPointError("non-finite fairlead tension")

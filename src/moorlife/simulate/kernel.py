@@ -168,7 +168,7 @@ class DynamicLines(NamedTuple):
     state: Any
     #: the line model (``moorlife.mooring.dynamic.LineKernel``)
     kernel: Any
-    #: the same lines as lanes (``moorlife.mooring.lanes.LaneState``; zero lanes: the one-line step)
+    #: the same lines as lanes (``moorlife.mooring.lanes.LaneState``; no lanes: the one-line step)
     lanes: Any
     #: the lanes' scratch (``moorlife.mooring.lanes.LaneWork``)
     work: Any
@@ -590,7 +590,7 @@ def _run_dynamic(n, dt, nsub, state, body, rad, strips, rotor, wave, rec, lines)
     """
     ls, kernel, lanes, work = lines.state, lines.kernel, lines.lanes, lines.work
     moor = MooringLink(True, ls.forces, ls.tension)
-    fast = kernel.scheme == 1 and lanes.r.shape[2] > 0
+    fast = kernel.scheme == 1 and lanes.nodes.shape[0] > 0
     fp, fv = state.fairlead_position, state.fairlead_velocity
     for j in range(n):
         _predict_fairleads(state.displacement, state.velocity, body.fairleads, dt, fp, fv)
