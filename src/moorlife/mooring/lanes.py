@@ -34,7 +34,9 @@ out the wrap-around of negative indices, a select that would hide the indices fr
 The lane loops run to the block's width read at run time (``LaneWork.fair.shape[3]``, always
 ``W``) rather than to the constant ``W``: Numba runs LLVM without its SLP vectoriser, and LLVM
 fully unrolls a short loop of constant trip count before the loop vectoriser sees it, which
-would leave the unrolled lanes scalar.
+would leave the unrolled lanes scalar. Nor does a lane loop call a helper function with the
+array: Numba counts the references of an array passed to an inlined function, and a loop with
+those calls in it is not vectorised. LLVM reports every lane loop of the step vectorised (width 4).
 """
 
 from __future__ import annotations
@@ -191,60 +193,12 @@ def unpack(lanes, state):  # pragma: no cover - numba
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _node_drag(
-    x, o, hb, tx, ty, tz, fx, fy, fz, cn, ct, kba, cba, zbed, band, kb, cb, area, mu, fric, vslip
-):  # pragma: no cover
-    """Weight already in ``fz``: drag, seabed and friction of one lane's node, with its damping matrix.
-
-    ``o`` is the lane's place in the node's record, ``(tx, ty, tz)`` the node tangent and
-    ``(fx, fy, fz)`` the net tension minus the weight. Stores the node force, ``Kz`` and ``C``.
-    """
-    vx, vy, vz = x[_u(o + _V2 + _X)], x[_u(o + _V2 + _Y)], x[_u(o + _V2 + _Z)]
-    vt = vx * tx + vy * ty + vz * tz
-    px, py, pz = vx - vt * tx, vy - vt * ty, vz - vt * tz
-    vp = math.sqrt(px * px + py * py + pz * pz)
-    avt = abs(vt)
-    fx -= cn * vp * px + ct * avt * vt * tx
-    fy -= cn * vp * py + ct * avt * vt * ty
-    fz -= cn * vp * pz + ct * avt * vt * tz
-    ip = cn / vp if vp > 0.0 else 0.0
-    ctt = 2.0 * ct * avt - cn * vp
-    cI = cn * vp
-    c00 = cI + ctt * tx * tx + ip * px * px
-    c11 = cI + ctt * ty * ty + ip * py * py
-    c22 = cI + ctt * tz * tz + ip * pz * pz
-    rz = x[_u(o + _R2 + _Z)]
-    near = rz < zbed + band + hb * max(-vz, 0.0)
-    x[_u(o + _KZ)] = kba if near else 0.0
-    c22 = c22 + cba if near else c22
-    below = rz < zbed
-    Bz = ((zbed - rz) * kb - vz * cb) * area
-    fz = fz + Bz if below else fz
-    fmax = mu * abs(Bz)
-    vh = math.sqrt(vx * vx + vy * vy)
-    ff = fmax * min(vh / vslip, 1.0)
-    slide = below and fric and vh > 0.0
-    fx = fx - ff * vx / vh if slide else fx
-    fy = fy - ff * vy / vh if slide else fy
-    cf = fmax / max(vh, vslip)
-    c00 = c00 + cf if below and fric else c00
-    c11 = c11 + cf if below and fric else c11
-    x[_u(o + _C00)] = c00
-    x[_u(o + _C11)] = c11
-    x[_u(o + _C22)] = c22
-    x[_u(o + _C01)] = ctt * tx * ty + ip * px * py
-    x[_u(o + _C02)] = ctt * tx * tz + ip * px * pz
-    x[_u(o + _C12)] = ctt * ty * tz + ip * py * pz
-    x[_u(o + _F + _X)] = fx
-    x[_u(o + _F + _Y)] = fy
-    x[_u(o + _F + _Z)] = fz
-
-
-@njit(cache=True, inline="always", error_model="numpy")
 def _node_forces(x, b0, nw, p, hb):  # pragma: no cover - numba
     """``line_forces._node_forces`` with ``jac`` on the lanes of one block (the same operations per lane).
 
     ``b0`` is the block's first record; the forces are of the predicted state (rows ``_R2, _V2``).
+    (No helper function is called within a lane loop: Numba would count its references to ``x``
+    there, and the loop would not be vectorised.)
     """
     N = int(p[_N])
     l0 = p[_L0]
@@ -272,6 +226,33 @@ def _node_forces(x, b0, nw, p, hb):  # pragma: no cover - numba
             x[_u(o + _SQ + _X)] = qx
             x[_u(o + _SQ + _Y)] = qy
             x[_u(o + _SQ + _Z)] = qz
+    # the net tension and the unit tangent: at the ends the one segment's
+    bN = b0 + N * _REC
+    for a in range(3):
+        c = a * W
+        for l in range(nw):
+            o, oN = b0 + c + l, bN + c + l
+            q0, q1 = x[_u(o + _SQ)], x[_u(oN - _REC + _SQ)]
+            x[_u(o + _F)] = 0.0 + x[_u(b0 + l + _SEGF)] * q0
+            x[_u(o + _TG)] = q0
+            x[_u(oN + _F)] = 0.0 - x[_u(bN - _REC + l + _SEGF)] * q1
+            x[_u(oN + _TG)] = q1
+    for i in range(1, N):
+        bi = b0 + i * _REC
+        for l in range(nw):
+            o = bi + l
+            op, on = o - _REC, o + _REC
+            sf, sfp = x[_u(o + _SEGF)], x[_u(op + _SEGF)]
+            x[_u(o + _F + _X)] = 0.0 + sf * x[_u(o + _SQ + _X)] - sfp * x[_u(op + _SQ + _X)]
+            x[_u(o + _F + _Y)] = 0.0 + sf * x[_u(o + _SQ + _Y)] - sfp * x[_u(op + _SQ + _Y)]
+            x[_u(o + _F + _Z)] = 0.0 + sf * x[_u(o + _SQ + _Z)] - sfp * x[_u(op + _SQ + _Z)]
+            tx = x[_u(on + _R2 + _X)] - x[_u(op + _R2 + _X)]
+            ty = x[_u(on + _R2 + _Y)] - x[_u(op + _R2 + _Y)]
+            tz = x[_u(on + _R2 + _Z)] - x[_u(op + _R2 + _Z)]
+            tn = 1.0 / math.sqrt(tx * tx + ty * ty + tz * tz)
+            x[_u(o + _TG + _X)] = tx * tn
+            x[_u(o + _TG + _Y)] = ty * tn
+            x[_u(o + _TG + _Z)] = tz * tn
     rho = p[_RHO]
     cdn = 0.5 * rho * p[_CDN] * p[_D]
     cdt = 0.5 * rho * p[_CDT] * math.pi * p[_D]
@@ -279,106 +260,69 @@ def _node_forces(x, b0, nw, p, hb):  # pragma: no cover - numba
     mu = p[_MU]
     kb, cb, band, vslip, dia, wlen = p[_KB], p[_CB], p[_BAND], p[_VSLIP], p[_D], p[_WLEN]
     fric = mu > 0.0
-    # the ends: half segments, the segment's tangent; the net tension of the one segment
-    ln = 0.5 * l0
-    cn, ct, area = cdn * ln, cdt * ln, dia * ln
-    kba, cba, wl = kb * area, cb * area, wlen * ln
-    for l in range(nw):
-        o = b0 + l
-        tx, ty, tz = x[_u(o + _SQ + _X)], x[_u(o + _SQ + _Y)], x[_u(o + _SQ + _Z)]
-        x[_u(o + _TG + _X)] = tx
-        x[_u(o + _TG + _Y)] = ty
-        x[_u(o + _TG + _Z)] = tz
-        sf = x[_u(o + _SEGF)]
-        fx, fy, fz = 0.0 + sf * tx, 0.0 + sf * ty, 0.0 + sf * tz
-        _node_drag(x, o, hb, tx, ty, tz, fx, fy, fz - wl, cn, ct, kba, cba, zbed, band, kb, cb, area, mu, fric, vslip)
-    for l in range(nw):
-        o = b0 + N * _REC + l
-        os = o - _REC  # the last segment
-        tx, ty, tz = x[_u(os + _SQ + _X)], x[_u(os + _SQ + _Y)], x[_u(os + _SQ + _Z)]
-        x[_u(o + _TG + _X)] = tx
-        x[_u(o + _TG + _Y)] = ty
-        x[_u(o + _TG + _Z)] = tz
-        sf = x[_u(os + _SEGF)]
-        fx, fy, fz = 0.0 - sf * tx, 0.0 - sf * ty, 0.0 - sf * tz
-        _node_drag(x, o, hb, tx, ty, tz, fx, fy, fz - wl, cn, ct, kba, cba, zbed, band, kb, cb, area, mu, fric, vslip)
-    # the interior nodes: the tension of the two segments, the tangent of the two neighbours
-    ln = l0
-    cn, ct, area = cdn * ln, cdt * ln, dia * ln
-    kba, cba, wl = kb * area, cb * area, wlen * ln
-    for i in range(1, N):
+    for i in range(N + 1):
+        ln = l0 if (0 < i < N) else 0.5 * l0
+        cn = cdn * ln
+        ct = cdt * ln
+        area = dia * ln
+        kba = kb * area
+        cba = cb * area
+        wl = wlen * ln
         bi = b0 + i * _REC
+        # weight, drag, seabed and friction, with their damping matrix: one select per branch
         for l in range(nw):
             o = bi + l
-            op, on = o - _REC, o + _REC
-            sf, sfp = x[_u(o + _SEGF)], x[_u(op + _SEGF)]
-            fx = 0.0 + sf * x[_u(o + _SQ + _X)] - sfp * x[_u(op + _SQ + _X)]
-            fy = 0.0 + sf * x[_u(o + _SQ + _Y)] - sfp * x[_u(op + _SQ + _Y)]
-            fz = 0.0 + sf * x[_u(o + _SQ + _Z)] - sfp * x[_u(op + _SQ + _Z)]
-            tx = x[_u(on + _R2 + _X)] - x[_u(op + _R2 + _X)]
-            ty = x[_u(on + _R2 + _Y)] - x[_u(op + _R2 + _Y)]
-            tz = x[_u(on + _R2 + _Z)] - x[_u(op + _R2 + _Z)]
-            tn = 1.0 / math.sqrt(tx * tx + ty * ty + tz * tz)
-            tx, ty, tz = tx * tn, ty * tn, tz * tn
-            x[_u(o + _TG + _X)] = tx
-            x[_u(o + _TG + _Y)] = ty
-            x[_u(o + _TG + _Z)] = tz
-            _node_drag(
-                x, o, hb, tx, ty, tz, fx, fy, fz - wl, cn, ct, kba, cba, zbed, band, kb, cb, area, mu, fric, vslip
-            )
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def _pivot(x, o, am, bm, cg, cz):  # pragma: no cover - numba
-    """The block-Thomas pivot of one lane's node before the elimination of its predecessor.
-
-    ``bm t t' + cz C + S[i - 1] + S[i]`` plus ``am`` on the diagonal and ``cg Kz`` on ``zz``
-    (``dynamic._factor``), from the node's record at ``o``; returns its nine entries row by row.
-    """
-    op = o - _REC
-    t0, t1, t2 = x[_u(o + _TG + _X)], x[_u(o + _TG + _Y)], x[_u(o + _TG + _Z)]
-    c00, c11, c22 = x[_u(o + _C00)], x[_u(o + _C11)], x[_u(o + _C22)]
-    c01, c02, c12 = x[_u(o + _C01)], x[_u(o + _C02)], x[_u(o + _C12)]
-    d00 = bm * t0 * t0 + cz * c00 + x[_u(op + _S + 0 * W)] + x[_u(o + _S + 0 * W)]
-    d01 = bm * t0 * t1 + cz * c01 + x[_u(op + _S + 1 * W)] + x[_u(o + _S + 1 * W)]
-    d02 = bm * t0 * t2 + cz * c02 + x[_u(op + _S + 2 * W)] + x[_u(o + _S + 2 * W)]
-    d10 = bm * t1 * t0 + cz * c01 + x[_u(op + _S + 3 * W)] + x[_u(o + _S + 3 * W)]
-    d11 = bm * t1 * t1 + cz * c11 + x[_u(op + _S + 4 * W)] + x[_u(o + _S + 4 * W)]
-    d12 = bm * t1 * t2 + cz * c12 + x[_u(op + _S + 5 * W)] + x[_u(o + _S + 5 * W)]
-    d20 = bm * t2 * t0 + cz * c02 + x[_u(op + _S + 6 * W)] + x[_u(o + _S + 6 * W)]
-    d21 = bm * t2 * t1 + cz * c12 + x[_u(op + _S + 7 * W)] + x[_u(o + _S + 7 * W)]
-    d22 = bm * t2 * t2 + cz * c22 + x[_u(op + _S + 8 * W)] + x[_u(o + _S + 8 * W)]
-    d00 += am
-    d11 += am
-    d22 += am
-    d22 += cg * x[_u(o + _KZ)]
-    return d00, d01, d02, d10, d11, d12, d20, d21, d22
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def _invert(x, o, a, b, c, d, e, f, g, h, k):  # pragma: no cover - numba
-    """Store the inverse of the pivot ``[[a, b, c], [d, e, f], [g, h, k]]`` in the record at ``o``."""
-    c0 = e * k - f * h
-    c1 = f * g - d * k
-    c2 = d * h - e * g
-    det = a * c0 + b * c1 + c * c2
-    rr = 1.0 / det
-    x[_u(o + _WI + 0 * W)] = c0 * rr
-    x[_u(o + _WI + 1 * W)] = (c * h - b * k) * rr
-    x[_u(o + _WI + 2 * W)] = (b * f - c * e) * rr
-    x[_u(o + _WI + 3 * W)] = c1 * rr
-    x[_u(o + _WI + 4 * W)] = (a * k - c * g) * rr
-    x[_u(o + _WI + 5 * W)] = (c * d - a * f) * rr
-    x[_u(o + _WI + 6 * W)] = c2 * rr
-    x[_u(o + _WI + 7 * W)] = (b * g - a * h) * rr
-    x[_u(o + _WI + 8 * W)] = (a * e - b * d) * rr
+            tx, ty, tz = x[_u(o + _TG + _X)], x[_u(o + _TG + _Y)], x[_u(o + _TG + _Z)]
+            fx, fy, fz = x[_u(o + _F + _X)], x[_u(o + _F + _Y)], x[_u(o + _F + _Z)] - wl
+            vx, vy, vz = x[_u(o + _V2 + _X)], x[_u(o + _V2 + _Y)], x[_u(o + _V2 + _Z)]
+            vt = vx * tx + vy * ty + vz * tz
+            px, py, pz = vx - vt * tx, vy - vt * ty, vz - vt * tz
+            vp = math.sqrt(px * px + py * py + pz * pz)
+            avt = abs(vt)
+            fx -= cn * vp * px + ct * avt * vt * tx
+            fy -= cn * vp * py + ct * avt * vt * ty
+            fz -= cn * vp * pz + ct * avt * vt * tz
+            ip = cn / vp if vp > 0.0 else 0.0
+            ctt = 2.0 * ct * avt - cn * vp
+            cI = cn * vp
+            c00 = cI + ctt * tx * tx + ip * px * px
+            c11 = cI + ctt * ty * ty + ip * py * py
+            c22 = cI + ctt * tz * tz + ip * pz * pz
+            rz = x[_u(o + _R2 + _Z)]
+            near = rz < zbed + band + hb * max(-vz, 0.0)
+            x[_u(o + _KZ)] = kba if near else 0.0
+            c22 = c22 + cba if near else c22
+            below = rz < zbed
+            Bz = ((zbed - rz) * kb - vz * cb) * area
+            fz = fz + Bz if below else fz
+            fmax = mu * abs(Bz)
+            vh = math.sqrt(vx * vx + vy * vy)
+            ff = fmax * min(vh / vslip, 1.0)
+            slide = below and fric and vh > 0.0
+            fx = fx - ff * vx / vh if slide else fx
+            fy = fy - ff * vy / vh if slide else fy
+            cf = fmax / max(vh, vslip)
+            c00 = c00 + cf if below and fric else c00
+            c11 = c11 + cf if below and fric else c11
+            x[_u(o + _C00)] = c00
+            x[_u(o + _C11)] = c11
+            x[_u(o + _C22)] = c22
+            x[_u(o + _C01)] = ctt * tx * ty + ip * px * py
+            x[_u(o + _C02)] = ctt * tx * tz + ip * px * pz
+            x[_u(o + _C12)] = ctt * ty * tz + ip * py * pz
+            x[_u(o + _F + _X)] = fx
+            x[_u(o + _F + _Y)] = fy
+            x[_u(o + _F + _Z)] = fz
 
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _factor(x, b0, nw, N, am, bm, cs, cg, cz):  # pragma: no cover - numba
     """``dynamic._factor`` on the lanes of one block: coupling blocks and inverted block-Thomas pivots.
 
-    ``am, bm`` are the isotropic and axial-minus-normal added mass of an interior node.
+    ``am, bm`` are the isotropic and axial-minus-normal added mass of an interior node. Node 1
+    has no predecessor to eliminate: its lanes compute the elimination from the record of node 0
+    all the same (the loads stay unconditional, so that the loop vectorises) and select the
+    pivot without it.
     """
     for s in range(N):
         bs = b0 + s * _REC
@@ -396,17 +340,28 @@ def _factor(x, b0, nw, N, am, bm, cs, cg, cz):  # pragma: no cover - numba
             x[_u(o + _S + 6 * W)] = ca * q2 * q0
             x[_u(o + _S + 7 * W)] = ca * q2 * q1
             x[_u(o + _S + 8 * W)] = ca * q2 * q2 + gs
-    # node 1: no predecessor to eliminate
-    for l in range(nw):
-        o = b0 + _REC + l
-        d00, d01, d02, d10, d11, d12, d20, d21, d22 = _pivot(x, o, am, bm, cg, cz)
-        _invert(x, o, d00, d01, d02, d10, d11, d12, d20, d21, d22)
-    for i in range(2, N):
+    for i in range(1, N):
         bi = b0 + i * _REC
+        elim = i > 1
         for l in range(nw):
             o = bi + l
             oj = o - _REC  # node j = i - 1 and segment j
-            d00, d01, d02, d10, d11, d12, d20, d21, d22 = _pivot(x, o, am, bm, cg, cz)
+            t0, t1, t2 = x[_u(o + _TG + _X)], x[_u(o + _TG + _Y)], x[_u(o + _TG + _Z)]
+            c00, c11, c22 = x[_u(o + _C00)], x[_u(o + _C11)], x[_u(o + _C22)]
+            c01, c02, c12 = x[_u(o + _C01)], x[_u(o + _C02)], x[_u(o + _C12)]
+            d00 = bm * t0 * t0 + cz * c00 + x[_u(oj + _S + 0 * W)] + x[_u(o + _S + 0 * W)]
+            d01 = bm * t0 * t1 + cz * c01 + x[_u(oj + _S + 1 * W)] + x[_u(o + _S + 1 * W)]
+            d02 = bm * t0 * t2 + cz * c02 + x[_u(oj + _S + 2 * W)] + x[_u(o + _S + 2 * W)]
+            d10 = bm * t1 * t0 + cz * c01 + x[_u(oj + _S + 3 * W)] + x[_u(o + _S + 3 * W)]
+            d11 = bm * t1 * t1 + cz * c11 + x[_u(oj + _S + 4 * W)] + x[_u(o + _S + 4 * W)]
+            d12 = bm * t1 * t2 + cz * c12 + x[_u(oj + _S + 5 * W)] + x[_u(o + _S + 5 * W)]
+            d20 = bm * t2 * t0 + cz * c02 + x[_u(oj + _S + 6 * W)] + x[_u(o + _S + 6 * W)]
+            d21 = bm * t2 * t1 + cz * c12 + x[_u(oj + _S + 7 * W)] + x[_u(o + _S + 7 * W)]
+            d22 = bm * t2 * t2 + cz * c22 + x[_u(oj + _S + 8 * W)] + x[_u(o + _S + 8 * W)]
+            d00 += am
+            d11 += am
+            d22 += am
+            d22 += cg * x[_u(o + _KZ)]
             al = cs + cg * x[_u(oj + _SA)]
             be = cg * x[_u(oj + _SG)]
             q0, q1, q2 = x[_u(oj + _SQ + _X)], x[_u(oj + _SQ + _Y)], x[_u(oj + _SQ + _Z)]
@@ -419,66 +374,61 @@ def _factor(x, b0, nw, N, am, bm, cs, cg, cz):  # pragma: no cover - numba
             a2s = al * al * (q0 * g0 + q1 * g1 + q2 * g2)
             ab = al * be
             b2 = be * be
-            d00 -= a2s * q0 * q0 + ab * (q0 * g0 + g0 * q0) + b2 * w00
-            d01 -= a2s * q0 * q1 + ab * (q0 * g1 + g0 * q1) + b2 * w01
-            d02 -= a2s * q0 * q2 + ab * (q0 * g2 + g0 * q2) + b2 * w02
-            d10 -= a2s * q1 * q0 + ab * (q1 * g0 + g1 * q0) + b2 * w10
-            d11 -= a2s * q1 * q1 + ab * (q1 * g1 + g1 * q1) + b2 * w11
-            d12 -= a2s * q1 * q2 + ab * (q1 * g2 + g1 * q2) + b2 * w12
-            d20 -= a2s * q2 * q0 + ab * (q2 * g0 + g2 * q0) + b2 * w20
-            d21 -= a2s * q2 * q1 + ab * (q2 * g1 + g2 * q1) + b2 * w21
-            d22 -= a2s * q2 * q2 + ab * (q2 * g2 + g2 * q2) + b2 * w22
-            _invert(x, o, d00, d01, d02, d10, d11, d12, d20, d21, d22)
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def _wi_times(x, o, t0, t1, t2):  # pragma: no cover - numba
-    """The inverted pivot of the record at ``o`` times ``(t0, t1, t2)``."""
-    y0 = x[_u(o + _WI + 0 * W)] * t0 + x[_u(o + _WI + 1 * W)] * t1 + x[_u(o + _WI + 2 * W)] * t2
-    y1 = x[_u(o + _WI + 3 * W)] * t0 + x[_u(o + _WI + 4 * W)] * t1 + x[_u(o + _WI + 5 * W)] * t2
-    y2 = x[_u(o + _WI + 6 * W)] * t0 + x[_u(o + _WI + 7 * W)] * t1 + x[_u(o + _WI + 8 * W)] * t2
-    return y0, y1, y2
+            a = d00 - (a2s * q0 * q0 + ab * (q0 * g0 + g0 * q0) + b2 * w00) if elim else d00
+            b = d01 - (a2s * q0 * q1 + ab * (q0 * g1 + g0 * q1) + b2 * w01) if elim else d01
+            c = d02 - (a2s * q0 * q2 + ab * (q0 * g2 + g0 * q2) + b2 * w02) if elim else d02
+            d = d10 - (a2s * q1 * q0 + ab * (q1 * g0 + g1 * q0) + b2 * w10) if elim else d10
+            e = d11 - (a2s * q1 * q1 + ab * (q1 * g1 + g1 * q1) + b2 * w11) if elim else d11
+            f = d12 - (a2s * q1 * q2 + ab * (q1 * g2 + g1 * q2) + b2 * w12) if elim else d12
+            g = d20 - (a2s * q2 * q0 + ab * (q2 * g0 + g2 * q0) + b2 * w20) if elim else d20
+            h = d21 - (a2s * q2 * q1 + ab * (q2 * g1 + g2 * q1) + b2 * w21) if elim else d21
+            k = d22 - (a2s * q2 * q2 + ab * (q2 * g2 + g2 * q2) + b2 * w22) if elim else d22
+            # the inverse of the pivot [[a, b, c], [d, e, f], [g, h, k]]
+            c0 = e * k - f * h
+            c1 = f * g - d * k
+            c2 = d * h - e * g
+            det = a * c0 + b * c1 + c * c2
+            rr = 1.0 / det
+            x[_u(o + _WI + 0 * W)] = c0 * rr
+            x[_u(o + _WI + 1 * W)] = (c * h - b * k) * rr
+            x[_u(o + _WI + 2 * W)] = (b * f - c * e) * rr
+            x[_u(o + _WI + 3 * W)] = c1 * rr
+            x[_u(o + _WI + 4 * W)] = (a * k - c * g) * rr
+            x[_u(o + _WI + 5 * W)] = (c * d - a * f) * rr
+            x[_u(o + _WI + 6 * W)] = c2 * rr
+            x[_u(o + _WI + 7 * W)] = (b * g - a * h) * rr
+            x[_u(o + _WI + 8 * W)] = (a * e - b * d) * rr
 
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _solve_blocks(x, b0, nw, N):  # pragma: no cover - numba
     """``dynamic._solve_blocks`` on the lanes of one block: rows ``_RHS`` in, the solution in ``_DV``."""
-    for l in range(nw):
-        o = b0 + _REC + l
-        x[_u(o + _DV + _X)] = x[_u(o + _RHS + _X)]
-        x[_u(o + _DV + _Y)] = x[_u(o + _RHS + _Y)]
-        x[_u(o + _DV + _Z)] = x[_u(o + _RHS + _Z)]
+    for a in range(3):
+        c = b0 + _REC + a * W
+        for l in range(nw):
+            x[_u(c + l + _DV)] = x[_u(c + l + _RHS)]
     for i in range(2, N):
         bi = b0 + i * _REC
         for l in range(nw):
             o = bi + l
             op = o - _REC
-            t0, t1, t2 = _wi_times(x, op, x[_u(op + _DV + _X)], x[_u(op + _DV + _Y)], x[_u(op + _DV + _Z)])
-            x[_u(o + _DV + _X)] = (
-                x[_u(o + _RHS + _X)]
-                + x[_u(op + _S + 0 * W)] * t0
-                + x[_u(op + _S + 1 * W)] * t1
-                + x[_u(op + _S + 2 * W)] * t2
-            )
-            x[_u(o + _DV + _Y)] = (
-                x[_u(o + _RHS + _Y)]
-                + x[_u(op + _S + 3 * W)] * t0
-                + x[_u(op + _S + 4 * W)] * t1
-                + x[_u(op + _S + 5 * W)] * t2
-            )
-            x[_u(o + _DV + _Z)] = (
-                x[_u(o + _RHS + _Z)]
-                + x[_u(op + _S + 6 * W)] * t0
-                + x[_u(op + _S + 7 * W)] * t1
-                + x[_u(op + _S + 8 * W)] * t2
-            )
+            y0, y1, y2 = x[_u(op + _DV + _X)], x[_u(op + _DV + _Y)], x[_u(op + _DV + _Z)]
+            t0 = x[_u(op + _WI + 0 * W)] * y0 + x[_u(op + _WI + 1 * W)] * y1 + x[_u(op + _WI + 2 * W)] * y2
+            t1 = x[_u(op + _WI + 3 * W)] * y0 + x[_u(op + _WI + 4 * W)] * y1 + x[_u(op + _WI + 5 * W)] * y2
+            t2 = x[_u(op + _WI + 6 * W)] * y0 + x[_u(op + _WI + 7 * W)] * y1 + x[_u(op + _WI + 8 * W)] * y2
+            s00, s01, s02 = x[_u(op + _S + 0 * W)], x[_u(op + _S + 1 * W)], x[_u(op + _S + 2 * W)]
+            s10, s11, s12 = x[_u(op + _S + 3 * W)], x[_u(op + _S + 4 * W)], x[_u(op + _S + 5 * W)]
+            s20, s21, s22 = x[_u(op + _S + 6 * W)], x[_u(op + _S + 7 * W)], x[_u(op + _S + 8 * W)]
+            x[_u(o + _DV + _X)] = x[_u(o + _RHS + _X)] + s00 * t0 + s01 * t1 + s02 * t2
+            x[_u(o + _DV + _Y)] = x[_u(o + _RHS + _Y)] + s10 * t0 + s11 * t1 + s12 * t2
+            x[_u(o + _DV + _Z)] = x[_u(o + _RHS + _Z)] + s20 * t0 + s21 * t1 + s22 * t2
     bl = b0 + (N - 1) * _REC
     for l in range(nw):
         o = bl + l
-        y0, y1, y2 = _wi_times(x, o, x[_u(o + _DV + _X)], x[_u(o + _DV + _Y)], x[_u(o + _DV + _Z)])
-        x[_u(o + _DV + _X)] = y0
-        x[_u(o + _DV + _Y)] = y1
-        x[_u(o + _DV + _Z)] = y2
+        t0, t1, t2 = x[_u(o + _DV + _X)], x[_u(o + _DV + _Y)], x[_u(o + _DV + _Z)]
+        x[_u(o + _DV + _X)] = x[_u(o + _WI + 0 * W)] * t0 + x[_u(o + _WI + 1 * W)] * t1 + x[_u(o + _WI + 2 * W)] * t2
+        x[_u(o + _DV + _Y)] = x[_u(o + _WI + 3 * W)] * t0 + x[_u(o + _WI + 4 * W)] * t1 + x[_u(o + _WI + 5 * W)] * t2
+        x[_u(o + _DV + _Z)] = x[_u(o + _WI + 6 * W)] * t0 + x[_u(o + _WI + 7 * W)] * t1 + x[_u(o + _WI + 8 * W)] * t2
     for i in range(N - 2, 0, -1):
         bi = b0 + i * _REC
         for l in range(nw):
@@ -503,10 +453,15 @@ def _solve_blocks(x, b0, nw, N):  # pragma: no cover - numba
                 + x[_u(o + _S + 7 * W)] * n1
                 + x[_u(o + _S + 8 * W)] * n2
             )
-            y0, y1, y2 = _wi_times(x, o, t0, t1, t2)
-            x[_u(o + _DV + _X)] = y0
-            x[_u(o + _DV + _Y)] = y1
-            x[_u(o + _DV + _Z)] = y2
+            x[_u(o + _DV + _X)] = (
+                x[_u(o + _WI + 0 * W)] * t0 + x[_u(o + _WI + 1 * W)] * t1 + x[_u(o + _WI + 2 * W)] * t2
+            )
+            x[_u(o + _DV + _Y)] = (
+                x[_u(o + _WI + 3 * W)] * t0 + x[_u(o + _WI + 4 * W)] * t1 + x[_u(o + _WI + 5 * W)] * t2
+            )
+            x[_u(o + _DV + _Z)] = (
+                x[_u(o + _WI + 6 * W)] * t0 + x[_u(o + _WI + 7 * W)] * t1 + x[_u(o + _WI + 8 * W)] * t2
+            )
 
 
 @njit(cache=True, inline="always", error_model="numpy")
