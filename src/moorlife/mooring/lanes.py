@@ -36,7 +36,9 @@ The lane loops run to the block's width read at run time (``LaneWork.fair.shape[
 fully unrolls a short loop of constant trip count before the loop vectoriser sees it, which
 would leave the unrolled lanes scalar. Nor does a lane loop call a helper function with the
 array: Numba counts the references of an array passed to an inlined function, and a loop with
-those calls in it is not vectorised. LLVM reports every lane loop of the step vectorised (width 4).
+those calls in it is not vectorised. LLVM reports the lane loops of the node forces, the
+factorisation, the right-hand side and the solve vectorised (width 4); the few that copy the
+fairlead path from ``LaneWork`` stay scalar.
 """
 
 from __future__ import annotations
