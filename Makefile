@@ -17,9 +17,11 @@ $(STAMP): pyproject.toml constraints.txt | $(BIN)/python
 	touch $@
 
 ## run: the default study at the paper's scale (271,728 h, 1,000 + 225 states, MS1-MS6),
-## ending with the HTML report (report.html)
+## ending with the HTML report (report.html); with SNAKEMAKE_OUTPUT_CACHE set, the BEM comes
+## from (or goes to) that between-workflow cache (--cache, validation/hydro.md section 6)
+CACHE_FLAG := $(if $(SNAKEMAKE_OUTPUT_CACHE),--cache)
 run: $(STAMP)
-	$(BIN)/snakemake --cores $(CORES)
+	$(BIN)/snakemake --cores $(CORES) $(CACHE_FLAG)
 	$(BIN)/snakemake --cores $(CORES) --report report.html
 
 ## quick: the same DAG on config/quick.yaml (a few years, tens of states, short records)
