@@ -4,9 +4,9 @@
 # threshold, the Capytaine version): platform.yaml is read here, at parse time, so editing
 # e.g. the Ct table does not rerun the BEM.
 # Fine mesh (1.2 m panels, 3-fold symmetry, 50 frequencies x 24 headings): about 30 min on
-# 2 cores with every frequency in finite depth, about 17 min (estimated from per-frequency
-# CPU) with hydro.deep_water_kh: 10, the default (validation/hydro.md, section 4); the coarse
-# setting (hydro.mesh.resolution: coarse, config/quick.yaml) about 1 min.
+# 2 cores with every frequency in finite depth; 6-8 min measured in make run with the defaults
+# (hydro.deep_water_kh: 10 and the mirror symmetry; validation/hydro.md, sections 4 and 7); the
+# coarse setting (hydro.mesh.resolution: coarse, config/quick.yaml) about 1 min.
 #
 # Between-workflow cache (validation/hydro.md, section 6): with
 #   export SNAKEMAKE_OUTPUT_CACHE=/path/to/a/shared/cache
