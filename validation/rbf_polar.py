@@ -1,0 +1,120 @@
+"""Experiment: the wind and the waves as vectors (polar embedding) in the RBF space.
+
+Usage::
+
+    .venv/bin/python validation/rbf_polar.py RESULTS MS1 [MS2 ...]
+
+The paper's space puts a direction and a magnitude side by side: ``(W, theta_wind, Hs, Tp,
+theta_wave)``, the directions compared on the circle. The mean load on a line is closer to a
+*vector*: the rotor thrust ``T(W)`` along the wind, and a wave load growing with ``Hs`` along
+the waves, each projected on the line's azimuth. In the paper's space that projection is a
+product of two coordinates, which a Gaussian RBF on 1,000 states in 5-D rebuilds poorly where
+it varies fastest (a light line swings from slack to taut as the direction turns). As
+vectors, the projection on every line is a *linear* function of the coordinates, and the
+direction matters less when the magnitude is small, as it should.
+
+For each system, fits the lifecycle RBF (the schema defaults of ``lifecycle.rbf``) on the stored
+training states in these spaces, every coordinate a scalar scaled by its range over the
+training states, and prints the validation r on the 225 states:
+
+* ``5d``: the paper's space (the baseline, as ``lifecycle`` fits it);
+* ``thrust_vec``: ``W, T cos, T sin, Hs, Tp, theta_wave``: the wind as the thrust vector, ``W``
+  kept for what depends on the speed itself (turbulence, the pitch control);
+* ``both_vec``: ``W, T cos, T sin, Hs cos, Hs sin, Tp``: the waves as a vector too;
+* ``both_vec_dirs``: the 5-D space plus the two vectors (9-D).
+
+and two per-output choices among them, each output taking the space of the smallest
+leave-one-out RMS on the training states (in the fitted scale, log10 for the damage):
+``loo_5d_thr`` between ``5d`` and ``thrust_vec``, ``loo_all`` among all four.
+
+The validation states never steer anything here: the space is fixed (or chosen by
+leave-one-out), and the shapes and smoothing are chosen by leave-one-out on the training states
+as ``lifecycle`` does. Measured in ``validation/reconstruction.md``, section 12.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+import warnings
+
+import numpy as np
+import xarray as xr
+from rbf_thrust_coordinate import load_study
+
+from moorlife import lifecycle as lc
+from moorlife import names, rbf
+from moorlife.io import read_yaml
+from moorlife.lifecycle.spaces import ThrustCurve, thrust_at, thrust_curve
+
+SPACES = ("5d", "thrust_vec", "both_vec", "both_vec_dirs")
+#: Per-output choices by leave-one-out RMS on the training states (never the validation states).
+PICKS = {"loo_5d_thr": ("5d", "thrust_vec"), "loo_all": SPACES}
+
+
+def space_points(name: str, x: np.ndarray, thrust: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The points of space ``name`` from the paper's ``x`` (W, wind dir, Hs, Tp, wave dir) and
+    ``T(W)``: ``(points, is_direction)``."""
+    w, wd, hs, tp, vd = (x[:, j] for j in range(5))
+    tw = np.deg2rad(wd)
+    tv = np.deg2rad(vd)
+    t_vec = [thrust * np.cos(tw), thrust * np.sin(tw)]
+    h_vec = [hs * np.cos(tv), hs * np.sin(tv)]
+    if name == "5d":
+        return x, np.array([False, True, False, False, True])
+    if name == "thrust_vec":
+        return np.column_stack([w, *t_vec, hs, tp, vd]), np.array([False] * 5 + [True])
+    if name == "both_vec":
+        return np.column_stack([w, *t_vec, *h_vec, tp]), np.zeros(6, dtype=bool)
+    if name == "both_vec_dirs":
+        return np.column_stack([x, *t_vec, *h_vec]), np.array([False, True, False, False, True] + [False] * 4)
+    raise ValueError(f"unknown space {name!r}")
+
+
+def validation_r(results: str, ms: str, cases0: xr.Dataset, curve: ThrustCurve) -> tuple[list[str], dict]:
+    """Validation r per output of one system in each space of :data:`SPACES`."""
+    s = load_study(results, ms, cases0)
+    st, grid, tr, va, x = s.settings, s.grid, s.train, s.validate, s.x
+    cols = lc.output_columns(s.sims, names.CASE, st.outputs)
+    y = lc.stack_outputs(s.sims, names.CASE, cols)
+    isd = np.array([c[0].startswith("damage") for c in cols])
+    thrust = thrust_at(curve, x[:, 0])  # as the simulator's platform model
+    res, pred, loo = {}, {}, {}
+    for name in SPACES:
+        X, mask = space_points(name, x, thrust)
+        lo, span = (s.lo, s.span) if name == "5d" else (None, None)  # else: the training range
+        t = time.time()
+        m = rbf.fit_rbf(
+            X[tr], y[tr], is_direction=mask, log_output=isd, shapes=grid, smoothing=st.smoothing, lo=lo, span=span
+        )
+        pred[name] = rbf.predict_rbf(m, X[va])
+        loo[name] = np.sqrt(np.mean(m.loo_error**2, axis=0))  # in the fitted scale (log10 for damage)
+        res[name] = lc.validation_metrics(pred[name], y[va])["r"]
+        print(ms, name, "%.0f s" % (time.time() - t), flush=True)
+    for label, cands in PICKS.items():  # per output, the candidate with the smallest LOO RMS
+        k = np.argmin(np.stack([loo[c] for c in cands]), axis=0)
+        p = np.column_stack([pred[cands[kj]][:, j] for j, kj in enumerate(k)])
+        res[label] = lc.validation_metrics(p, y[va])["r"]
+        print(ms, label, "picks", "".join(str(v) for v in k), flush=True)
+    return [lc._label(c) for c in cols], res
+
+
+def main(argv: list[str]) -> int:
+    warnings.filterwarnings("ignore")
+    results = argv[1]
+    curve = thrust_curve(read_yaml("config/platform.yaml"))
+    cases0 = xr.open_zarr(f"{results}/selection/cases.zarr", consolidated=False).load()
+    print("   output".ljust(19), *[k.rjust(13) for k in (*SPACES, *PICKS)])
+    for ms in argv[2:]:
+        labels, res = validation_r(results, ms, cases0, curve)
+        for j, lab in enumerate(labels):
+            if "_tn" in lab:
+                continue
+            print("  ", lab.ljust(16), *[f"{res[k][j]:13.4f}" for k in res])
+        print("   min".ljust(19), *[f"{res[k].min():13.4f}" for k in res])
+        print("   mean".ljust(19), *[f"{res[k].mean():13.4f}" for k in res], flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
