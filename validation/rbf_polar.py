@@ -18,6 +18,8 @@ training states in these spaces, every coordinate a scalar scaled by its range o
 training states, and prints the validation r on the 225 states:
 
 * ``5d``: the paper's space (the baseline, as ``lifecycle`` fits it);
+* ``thrust``: the package's ``thrust`` space, the 5-D space plus ``T(W)`` as a scalar
+  (:func:`moorlife.lifecycle.spaces.space_inputs`, normalised as ``lifecycle`` does);
 * ``thrust_vec``: ``W, T cos, T sin, Hs, Tp, theta_wave``: the wind as the thrust vector, ``W``
   kept for what depends on the speed itself (turbulence, the pitch control);
 * ``both_vec``: ``W, T cos, T sin, Hs cos, Hs sin, Tp``: the waves as a vector too;
@@ -25,7 +27,8 @@ training states, and prints the validation r on the 225 states:
 
 and two per-output choices among them, each output taking the space of the smallest
 leave-one-out RMS on the training states (in the fitted scale, log10 for the damage):
-``loo_5d_thr`` between ``5d`` and ``thrust_vec``, ``loo_all`` among all four.
+``loo_5d_thr`` between ``5d`` and ``thrust_vec``, ``loo_5d_t`` between ``5d`` and ``thrust`` (what
+``lifecycle.rbf.choose: per_output`` can do today), ``loo_all`` among all five.
 
 The validation states never steer anything here: the space is fixed (or chosen by
 leave-one-out), and the shapes and smoothing are chosen by leave-one-out on the training states
@@ -45,11 +48,11 @@ from rbf_thrust_coordinate import load_study
 from moorlife import lifecycle as lc
 from moorlife import names, rbf
 from moorlife.io import read_yaml
-from moorlife.lifecycle.spaces import ThrustCurve, thrust_at, thrust_curve
+from moorlife.lifecycle.spaces import ThrustCurve, space_inputs, thrust_at, thrust_curve
 
-SPACES = ("5d", "thrust_vec", "both_vec", "both_vec_dirs")
+SPACES = ("5d", "thrust", "thrust_vec", "both_vec", "both_vec_dirs")
 #: Per-output choices by leave-one-out RMS on the training states (never the validation states).
-PICKS = {"loo_5d_thr": ("5d", "thrust_vec"), "loo_all": SPACES}
+PICKS = {"loo_5d_thr": ("5d", "thrust_vec"), "loo_5d_t": ("5d", "thrust"), "loo_all": SPACES}
 
 
 def space_points(name: str, x: np.ndarray, thrust: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -81,8 +84,11 @@ def validation_r(results: str, ms: str, cases0: xr.Dataset, curve: ThrustCurve) 
     thrust = thrust_at(curve, x[:, 0])  # as the simulator's platform model
     res, pred, loo = {}, {}, {}
     for name in SPACES:
-        X, mask = space_points(name, x, thrust)
-        lo, span = (s.lo, s.span) if name == "5d" else (None, None)  # else: the training range
+        if name == "thrust":  # as the package builds it
+            X, mask, lo, span = space_inputs(names.RBF_SPACE_THRUST, x, s.lo, s.span, curve)
+        else:
+            X, mask = space_points(name, x, thrust)
+            lo, span = (s.lo, s.span) if name == "5d" else (None, None)  # else: the training range
         t = time.time()
         m = rbf.fit_rbf(
             X[tr], y[tr], is_direction=mask, log_output=isd, shapes=grid, smoothing=st.smoothing, lo=lo, span=span
