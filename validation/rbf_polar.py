@@ -49,29 +49,32 @@ from moorlife import lifecycle as lc
 from moorlife import names, rbf
 from moorlife.io import read_yaml
 from moorlife.lifecycle.spaces import ThrustCurve, space_inputs, thrust_at, thrust_curve
+from moorlife.space import direction_mask
 
 SPACES = ("5d", "thrust", "thrust_vec", "both_vec", "both_vec_dirs")
 #: Per-output choices by leave-one-out RMS on the training states (never the validation states).
 PICKS = {"loo_5d_thr": ("5d", "thrust_vec"), "loo_5d_t": ("5d", "thrust"), "loo_all": SPACES}
 
 
-def space_points(name: str, x: np.ndarray, thrust: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The points of space ``name`` from the paper's ``x`` (W, wind dir, Hs, Tp, wave dir) and
-    ``T(W)``: ``(points, is_direction)``."""
-    w, wd, hs, tp, vd = (x[:, j] for j in range(5))
-    tw = np.deg2rad(wd)
-    tv = np.deg2rad(vd)
-    t_vec = [thrust * np.cos(tw), thrust * np.sin(tw)]
-    h_vec = [hs * np.cos(tv), hs * np.sin(tv)]
-    if name == "5d":
-        return x, np.array([False, True, False, False, True])
+def vector_points(name: str, x: np.ndarray, curve: ThrustCurve) -> tuple[np.ndarray, np.ndarray]:
+    """The points of the vector space ``name`` from the sea states ``x`` (``names.METOCEAN_VARS``
+    order): ``(points, is_direction)``. The paper's and the thrust spaces are the package's
+    (:func:`moorlife.lifecycle.spaces.space_inputs`)."""
+    w, wd, hs, tp, vd = (x[:, names.METOCEAN_VARS.index(v)] for v in ("wind_speed", "wind_dir", "hs", "tp", "wave_dir"))
+    thrust = thrust_at(curve, w)  # as the simulator's platform model
+    t_vec = [thrust * np.cos(np.deg2rad(wd)), thrust * np.sin(np.deg2rad(wd))]
+    h_vec = [hs * np.cos(np.deg2rad(vd)), hs * np.sin(np.deg2rad(vd))]
     if name == "thrust_vec":
         return np.column_stack([w, *t_vec, hs, tp, vd]), np.array([False] * 5 + [True])
     if name == "both_vec":
         return np.column_stack([w, *t_vec, *h_vec, tp]), np.zeros(6, dtype=bool)
     if name == "both_vec_dirs":
-        return np.column_stack([x, *t_vec, *h_vec]), np.array([False, True, False, False, True] + [False] * 4)
+        return np.column_stack([x, *t_vec, *h_vec]), np.r_[direction_mask(), np.zeros(4, dtype=bool)]
     raise ValueError(f"unknown space {name!r}")
+
+
+#: The package's spaces among :data:`SPACES`, normalised by the selection as ``lifecycle`` does.
+PACKAGE_SPACES = {"5d": names.RBF_SPACE_PAPER, "thrust": names.RBF_SPACE_THRUST}
 
 
 def validation_r(results: str, ms: str, cases0: xr.Dataset, curve: ThrustCurve) -> tuple[list[str], dict]:
@@ -81,14 +84,12 @@ def validation_r(results: str, ms: str, cases0: xr.Dataset, curve: ThrustCurve) 
     cols = lc.output_columns(s.sims, names.CASE, st.outputs)
     y = lc.stack_outputs(s.sims, names.CASE, cols)
     isd = np.array([c[0].startswith("damage") for c in cols])
-    thrust = thrust_at(curve, x[:, 0])  # as the simulator's platform model
     res, pred, loo = {}, {}, {}
     for name in SPACES:
-        if name == "thrust":  # as the package builds it
-            X, mask, lo, span = space_inputs(names.RBF_SPACE_THRUST, x, s.lo, s.span, curve)
-        else:
-            X, mask = space_points(name, x, thrust)
-            lo, span = (s.lo, s.span) if name == "5d" else (None, None)  # else: the training range
+        if name in PACKAGE_SPACES:
+            X, mask, lo, span = space_inputs(PACKAGE_SPACES[name], x, s.lo, s.span, curve)
+        else:  # every coordinate scaled by its range over the training states
+            (X, mask), lo, span = vector_points(name, x, curve), None, None
         t = time.time()
         m = rbf.fit_rbf(
             X[tr], y[tr], is_direction=mask, log_output=isd, shapes=grid, smoothing=st.smoothing, lo=lo, span=span
