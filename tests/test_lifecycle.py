@@ -597,6 +597,34 @@ def test_per_output_choice_takes_the_weighted_space_for_a_wind_ridge_only():
     assert r[0] > r_paper[0] + 0.02 and r[1] == r_paper[1]
 
 
+def test_per_output_choice_takes_the_wind_trend_for_a_wind_band_only():
+    """A damage peaked in a band of wind speed takes the space with the wind-speed trend; a smooth one does not."""
+    hc = _hindcast(3000, seed=36)
+    cases = _cases(hc, 150, 40, seed=37)
+    x = lifecycle._points(cases, "case")
+    w, _, hs, tp, _ = x.T
+    band = 1e-6 * np.exp(-(((w - 12.0) / 1.0) ** 2)) * (1 + 0.05 * hs) + 1e-9
+    smooth = 1e-7 * (1 + hs) ** 2 * (1 + 0.01 * w)
+    y = np.column_stack([band, smooth])
+    tr = cases["role"].values == "train"
+    cols = [("damage_sn", "M1"), ("damage_sn", "M2")]
+    cfg = {**PER_OUTPUT, "spaces": ["paper", "wind_trend"], "wind_trend": {"knots": [8, 10, 11, 12, 13, 14, 16]}}
+    settings = lifecycle.RBFSettings.from_config(cfg)
+    assert settings.trend_knots == (8.0, 10.0, 11.0, 12.0, 13.0, 14.0, 16.0) and settings.trend_harmonics == 1
+    model = lifecycle.fit_outputs(x[tr], y[tr], cols, settings)
+    np.testing.assert_array_equal(model.input_space, ["wind_trend", "paper"])
+    assert model.models[list(model.spaces).index("wind_trend")].trend.knots  # the fit carries its trend
+    paper = lifecycle.fit_outputs(x[tr], y[tr], cols, lifecycle.RBFSettings.from_config({**cfg, "spaces": ["paper"]}))
+    r = lifecycle.validation_metrics(lifecycle.predict_outputs(model, x[~tr]), y[~tr])["r"]
+    r_paper = lifecycle.validation_metrics(lifecycle.predict_outputs(paper, x[~tr]), y[~tr])["r"]
+    assert r[0] > r_paper[0] + 0.05 and r[1] == r_paper[1], (r, r_paper)
+    glob = lifecycle.fit_outputs(x[tr], y[tr], cols, lifecycle.RBFSettings.from_config({"space": "wind_trend"}))
+    assert glob.spaces == ("wind_trend",)
+    np.testing.assert_array_equal(glob.centres, paper.centres)  # the error indicator's paper space
+    with pytest.raises(ValueError, match=r"wind_trend.knots = \[12.0, 11.0\]; expected strictly increasing"):
+        lifecycle.RBFSettings.from_config({"wind_trend": {"knots": [12, 11]}}, source="c.yaml")
+
+
 def test_per_output_fit_does_not_depend_on_the_validation_states():
     """Perturbing the validation outputs changes the validation metrics and nothing else."""
     curve = _thrust_curve()

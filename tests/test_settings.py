@@ -71,6 +71,8 @@ RENAMED = {
         "grid_min": "grid.min",
         "grid_max": "grid.max",
         "grid_n": "grid.n",
+        "trend_knots": "wind_trend.knots",
+        "trend_harmonics": "wind_trend.harmonics",
     },
 }
 

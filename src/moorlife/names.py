@@ -169,12 +169,14 @@ SIM_OUTPUT_ATTRS: dict[str, dict[str, str]] = {**SIM_ATTRS, **SIM_EXTRA_ATTRS, *
 
 
 #: Candidate input spaces of the RBF reconstruction (``moorlife.lifecycle.spaces``): the paper's
-#: normalised 5-D space, the same plus the rotor thrust T(W) at the hub wind speed, and the 5-D
-#: space with a weight on each scalar coordinate (``lifecycle.rbf.weights``).
+#: normalised 5-D space, the same plus the rotor thrust T(W) at the hub wind speed, the 5-D
+#: space with a weight on each scalar coordinate (``lifecycle.rbf.weights``), and the 5-D space
+#: with a piecewise-linear trend in the wind speed (``lifecycle.rbf.wind_trend``).
 RBF_SPACE_PAPER = "paper"
 RBF_SPACE_THRUST = "thrust"
 RBF_SPACE_WEIGHTED = "weighted"
-RBF_SPACES: tuple[str, ...] = (RBF_SPACE_PAPER, RBF_SPACE_THRUST, RBF_SPACE_WEIGHTED)
+RBF_SPACE_WIND_TREND = "wind_trend"
+RBF_SPACES: tuple[str, ...] = (RBF_SPACE_PAPER, RBF_SPACE_THRUST, RBF_SPACE_WEIGHTED, RBF_SPACE_WIND_TREND)
 #: Transforms of a rebuilt output: interpolated as is, or as log10 and back-transformed.
 RBF_TRANSFORMS: tuple[str, ...] = ("linear", "log10")
 #: The reconstruction's choice per output in ``lifecycle.zarr`` (dim ``output``), and the root

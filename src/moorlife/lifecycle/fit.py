@@ -39,7 +39,7 @@ import numpy.typing as npt
 from moorlife import gp, names, rbf
 from moorlife.lifecycle.outputs import _label
 from moorlife.lifecycle.settings import RBFSettings
-from moorlife.lifecycle.spaces import ThrustCurve, space_inputs, space_points
+from moorlife.lifecycle.spaces import ThrustCurve, space_inputs, space_points, space_trend
 from moorlife.space import Space, embed, fit_space
 
 __all__ = ["Reconstruction", "validation_metrics", "fit_outputs", "predict_outputs", "loo_errors_in_units"]
@@ -198,6 +198,7 @@ def fit_outputs(
         lo=lo_s,
         span=span_s,
         retransform=settings.retransform,
+        trend=space_trend(settings.space, settings.trend_knots, settings.trend_harmonics),
     )
     if settings.shape_mode == "fixed":
         model = rbf.fit_rbf(x, values, shape=_fixed_shapes(cols, settings), **common)
@@ -392,7 +393,11 @@ def _fit_per_output(
     ly = np.full_like(y, np.nan)
     ly[:, log_ok] = np.log10(y_log[:, log_ok])
     inputs = [space_inputs(sp, points, lo, span, thrust, settings.weights) for sp in settings.spaces]
-    geometry = [rbf.centre_geometry(x, mask, lo=lo_s, span=span_s) for x, mask, lo_s, span_s in inputs]
+    trends = [space_trend(sp, settings.trend_knots, settings.trend_harmonics) for sp in settings.spaces]
+    geometry = [
+        rbf.centre_geometry(x, mask, lo=lo_s, span=span_s, trend=t)
+        for (x, mask, lo_s, span_s), t in zip(inputs, trends)
+    ]
     if settings.shape_mode == "fixed":
         shapes = _fixed_shapes(cols, settings)[:, None]
     else:
@@ -427,6 +432,7 @@ def _fit_per_output(
                 lo=lo_s,
                 span=span_s,
                 retransform=settings.retransform,
+                trend=trends[int(si)],
             )
         )
         columns.append(c)

@@ -114,6 +114,10 @@ class RBFSettings:
     weights : tuple of float
         Weight of each coordinate of the ``"weighted"`` space, ``names.METOCEAN_VARS`` order
         (1 on the directions).
+    trend_knots : tuple of float
+        Knots (m/s) of the wind-speed trend of the ``"wind_trend"`` space, strictly increasing.
+    trend_harmonics : int
+        Harmonics of the wind direction multiplying each hinge of that trend.
     transforms, damage_transforms : tuple of str
         Candidate transforms of ``per_output`` (``names.RBF_TRANSFORMS``) of the outputs other
         than the damage, and of the damage.
@@ -141,6 +145,8 @@ class RBFSettings:
     space: str
     spaces: tuple[str, ...]
     weights: tuple[float, ...]
+    trend_knots: tuple[float, ...]
+    trend_harmonics: int
     transforms: tuple[str, ...]
     damage_transforms: tuple[str, ...]
     retransform: str
@@ -179,6 +185,8 @@ class RBFSettings:
             space=str(s["space"]),
             spaces=tuple(str(v) for v in s["spaces"]),
             weights=tuple(1.0 if v in names.DIRECTION_VARS else float(s["weights"][v]) for v in names.METOCEAN_VARS),
+            trend_knots=tuple(float(v) for v in s["wind_trend"]["knots"]),
+            trend_harmonics=int(s["wind_trend"]["harmonics"]),
             transforms=tuple(str(v) for v in s["transforms"]),
             damage_transforms=tuple(str(v) for v in s["damage_transforms"]),
             retransform=str(s["retransform"]),
@@ -193,6 +201,9 @@ class RBFSettings:
             )
         if out.method == "gp" and out.choose != "global":
             raise ValueError(f"{source}: lifecycle.rbf.method = 'gp' needs choose = 'global', got {out.choose!r}")
+        knots = out.trend_knots
+        if any(not b > a for a, b in zip(knots, knots[1:])):
+            raise ValueError(f"{source}: lifecycle.rbf.wind_trend.knots = {list(knots)}; expected strictly increasing")
         if not 0 < out.grid_min < out.grid_max:
             raise ValueError(f"{source}: lifecycle.rbf.grid needs 0 < min < max, got {out.grid_min}, {out.grid_max}")
         return out

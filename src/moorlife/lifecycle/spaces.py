@@ -1,4 +1,4 @@
-"""The candidate input spaces of the reconstruction: the paper's 5-D space, with the thrust, or weighted.
+"""The candidate input spaces of the reconstruction: the paper's 5-D space, with the thrust, weighted, or with a trend.
 
 ``"paper"``
     The normalised 5-D sea-state space of the selection (:mod:`moorlife.space`): wind speed
@@ -19,20 +19,26 @@
     weight; directions as in the paper space. A weight above 1 shortens the RBF's length
     scale along that coordinate: the anisotropic metric that the damage's fast variation with
     wind speed asks for (``validation/reconstruction.md`` section 8).
+``"wind_trend"``
+    The paper's 5-D space, with the RBF's first-degree polynomial extended by a piecewise-linear
+    function of the wind speed times harmonics of the wind direction
+    (:class:`moorlife.rbf.Trend`, ``lifecycle.rbf.wind_trend``): the band of wind speed above
+    rated becomes a trend fitted from every training state (:func:`space_trend`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
 
 from moorlife import names, turbine
+from moorlife.rbf.trend import Trend
 from moorlife.space import direction_mask, scaling_from
 
-__all__ = ["ThrustCurve", "thrust_curve", "thrust_at", "space_inputs", "space_points"]
+__all__ = ["ThrustCurve", "thrust_curve", "thrust_at", "space_inputs", "space_points", "space_trend"]
 
 #: Wind-speed step (m/s) of the scan that finds the thrust range of a wind range.
 _SCAN_STEP = 0.01
@@ -120,9 +126,36 @@ def space_points(name: str, points: npt.ArrayLike, curve: ThrustCurve | None = N
     What a fitted model in that space is evaluated at (its normalisation, weights included, is
     the model's own): the points themselves, or with the thrust ``T(W)`` as a sixth column.
     """
-    if name == names.RBF_SPACE_WEIGHTED:
+    if name in (names.RBF_SPACE_WEIGHTED, names.RBF_SPACE_WIND_TREND):
         return np.asarray(points, dtype=float)
     return space_inputs(name, points, None, None, curve)[0]
+
+
+def space_trend(name: str, knots: Sequence[float], harmonics: int) -> Trend | None:
+    """The trend columns of the space ``name`` beside the RBF's polynomial (None but for ``"wind_trend"``).
+
+    Parameters
+    ----------
+    name : str
+        A space of ``names.RBF_SPACES``.
+    knots : sequence of float
+        Knots of the wind speed (m/s), strictly increasing (``lifecycle.rbf.wind_trend.knots``).
+    harmonics : int
+        Harmonics of the wind direction multiplying each hinge.
+
+    Returns
+    -------
+    moorlife.rbf.Trend or None
+        On the wind speed and the wind direction of the points in ``names.METOCEAN_VARS`` order.
+    """
+    if name != names.RBF_SPACE_WIND_TREND:
+        return None
+    return Trend(
+        column=names.METOCEAN_VARS.index("wind_speed"),
+        knots=tuple(float(k) for k in knots),
+        direction=names.METOCEAN_VARS.index("wind_dir"),
+        harmonics=int(harmonics),
+    )
 
 
 def space_inputs(
@@ -137,7 +170,7 @@ def space_inputs(
 
     Parameters
     ----------
-    name : {"paper", "thrust", "weighted"}
+    name : {"paper", "thrust", "weighted", "wind_trend"}
     points : array_like, shape (n, 5)
         Sea states in ``names.METOCEAN_VARS`` order (physical units).
     lo, span : array_like (5,) or None
@@ -165,7 +198,7 @@ def space_inputs(
     """
     x = np.asarray(points, dtype=float)
     mask = direction_mask()
-    if name == names.RBF_SPACE_PAPER:
+    if name in (names.RBF_SPACE_PAPER, names.RBF_SPACE_WIND_TREND):  # the trend is the fit's (space_trend)
         return x, mask, None if lo is None else np.asarray(lo, float), None if span is None else np.asarray(span, float)
     if name == names.RBF_SPACE_WEIGHTED:
         if weights is None:

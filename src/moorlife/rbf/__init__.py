@@ -39,17 +39,22 @@ retransformation-bias correction from the leave-one-out residuals (:mod:`moorlif
 space, the transform, ``q0`` and ``lambda`` by the leave-one-out error in the output's units;
 :func:`fit_rbf_fixed` fits such a choice.
 
-Modules: :mod:`~moorlife.rbf.kernels` (Gaussian kernel, weighted sums, trend basis),
-:mod:`~moorlife.rbf.system` (the augmented system), :mod:`~moorlife.rbf.loocv` (Rippa's
-leave-one-out choice of shape and ridge), :mod:`~moorlife.rbf.transform` (back-transform of
-``log10`` outputs), :mod:`~moorlife.rbf.choose` (the per-output choice), :mod:`~moorlife.rbf.fit`
-and :mod:`~moorlife.rbf.predict`.
+A :class:`Trend` adds piecewise-linear columns in one coordinate (optionally times harmonics of
+a direction) to the first-degree polynomial: universal kriging with a spline drift, for a
+feature narrower than the kernel along that coordinate (:mod:`moorlife.rbf.trend`).
+
+Modules: :mod:`~moorlife.rbf.kernels` (Gaussian kernel, weighted sums, polynomial basis),
+:mod:`~moorlife.rbf.trend` (the piecewise-linear trend), :mod:`~moorlife.rbf.system` (the
+augmented system), :mod:`~moorlife.rbf.loocv` (Rippa's leave-one-out choice of shape and
+ridge), :mod:`~moorlife.rbf.transform` (back-transform of ``log10`` outputs),
+:mod:`~moorlife.rbf.choose` (the per-output choice), :mod:`~moorlife.rbf.fit` and
+:mod:`~moorlife.rbf.predict`.
 """
 
 from __future__ import annotations
 
 from moorlife.rbf.choose import OutputChoice, choose_per_output
-from moorlife.rbf.fit import RBFModel, centre_geometry, fit_rbf, fit_rbf_fixed
+from moorlife.rbf.fit import RBFModel, centre_geometry, fit_rbf, fit_rbf_fixed, model_basis
 from moorlife.rbf.kernels import gaussian, polynomial_basis
 from moorlife.rbf.loocv import (
     MIN_RCOND,
@@ -65,6 +70,7 @@ from moorlife.rbf.loocv import (
 from moorlife.rbf.predict import nearest_centre, predict_rbf
 from moorlife.rbf.system import augmented_matrix, kernel_block_inverse, solve_weights
 from moorlife.rbf.transform import RETRANSFORMS, loo_error_in_units, retransform_factor
+from moorlife.rbf.trend import Trend, supported_trend, trend_basis
 from moorlife.space import Space, fit_space, squared_distances
 from moorlife.space import embed as normalise
 
@@ -91,6 +97,10 @@ __all__ = [
     "fit_rbf",
     "fit_rbf_fixed",
     "centre_geometry",
+    "model_basis",
+    "Trend",
+    "supported_trend",
+    "trend_basis",
     "RETRANSFORMS",
     "retransform_factor",
     "loo_error_in_units",

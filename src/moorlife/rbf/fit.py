@@ -1,4 +1,7 @@
-"""The fit: a multi-output Gaussian RBF with a first-degree polynomial (:func:`fit_rbf`)."""
+"""The fit: a multi-output Gaussian RBF with a first-degree polynomial (:func:`fit_rbf`).
+
+An optional :class:`moorlife.rbf.Trend` adds piecewise-linear columns to the polynomial.
+"""
 
 from __future__ import annotations
 
@@ -16,9 +19,10 @@ from moorlife.rbf.system import (
     solve_weights,
 )
 from moorlife.rbf.transform import RETRANSFORMS, retransform_factor
+from moorlife.rbf.trend import Trend, supported_trend, trend_basis
 from moorlife.space import Space, as_points, embed, fit_space, squared_distances
 
-__all__ = ["RBFModel", "fit_rbf", "fit_rbf_fixed", "centre_geometry"]
+__all__ = ["RBFModel", "fit_rbf", "fit_rbf_fixed", "centre_geometry", "model_basis"]
 
 
 @dataclass(frozen=True)
@@ -36,7 +40,7 @@ class RBFModel:
     weights : numpy.ndarray, shape (m, n_out)
         Kernel weights.
     poly_coef : numpy.ndarray, shape (p, n_out)
-        Polynomial coefficients on :func:`polynomial_basis`.
+        Coefficients on :func:`model_basis` (the polynomial, then any trend columns).
     log_output : numpy.ndarray of bool, shape (n_out,)
         Outputs interpolated as ``log10`` (back-transformed on prediction).
     loo_error : numpy.ndarray, shape (m, n_out)
@@ -47,6 +51,8 @@ class RBFModel:
     log_factor : numpy.ndarray, shape (n_out,)
         Back-transform factor ``c`` of the log outputs, predicted as ``c 10**f``
         (:func:`moorlife.rbf.retransform_factor`); 1.0 for linear outputs and without correction.
+    trend : Trend or None
+        The trend columns beside the polynomial, on the knots the training states support.
     """
 
     space: Space
@@ -58,6 +64,7 @@ class RBFModel:
     loo_error: np.ndarray
     smoothing: np.ndarray
     log_factor: np.ndarray
+    trend: Trend | None = None
 
     @property
     def n_outputs(self) -> int:
@@ -77,6 +84,7 @@ def fit_rbf(
     lo: npt.ArrayLike | None = None,
     span: npt.ArrayLike | None = None,
     retransform: str = "none",
+    trend: Trend | None = None,
 ) -> RBFModel:
     """Fit a multi-output Gaussian RBF with a first-degree polynomial.
 
@@ -105,6 +113,9 @@ def fit_rbf(
     retransform : {"none", "smearing", "ratio"}
         Back-transform correction of the log outputs (:mod:`moorlife.rbf.transform`), from the
         leave-one-out residuals of the fit; "none" predicts ``10**f``.
+    trend : Trend, optional
+        Piecewise-linear trend columns beside the polynomial (:mod:`moorlife.rbf.trend`); only
+        the knots the training states support are kept.
 
     Returns
     -------
@@ -116,7 +127,7 @@ def fit_rbf(
         On non-finite values, non-positive values of a log output (naming output and row),
         or mismatched shapes.
     """
-    space, z, d2, basis, y, logs = _prepare(points, values, is_direction, log_output, lo, span)
+    space, z, d2, basis, y, logs, trend = _prepare(points, values, is_direction, log_output, lo, span, trend)
     n_out = y.shape[1]
     lam_grid = np.atleast_1d(np.asarray(smoothing, dtype=float))
     if lam_grid.size == 0 or np.any(~(lam_grid >= 0)):
@@ -133,7 +144,7 @@ def fit_rbf(
             for qi in np.unique(q):
                 cols = np.flatnonzero(q == qi)
                 lam[cols] = choose_shapes_and_smoothing(d2, basis, y[:, cols], [qi], lam_grid, share_tol)[1]
-    return _assemble(space, z, d2, basis, y, q, lam, logs, retransform)
+    return _assemble(space, z, d2, basis, y, q, lam, logs, retransform, trend)
 
 
 def fit_rbf_fixed(
@@ -147,6 +158,7 @@ def fit_rbf_fixed(
     lo: npt.ArrayLike | None = None,
     span: npt.ArrayLike | None = None,
     retransform: str = "none",
+    trend: Trend | None = None,
 ) -> RBFModel:
     """Fit with a given shape parameter and smoothing per output (no search).
 
@@ -154,7 +166,7 @@ def fit_rbf_fixed(
 
     Parameters
     ----------
-    points, values, is_direction, log_output, lo, span, retransform
+    points, values, is_direction, log_output, lo, span, retransform, trend
         As :func:`fit_rbf`.
     shape : float or array_like (n_out,)
         ``q0`` per output (positive).
@@ -170,7 +182,7 @@ def fit_rbf_fixed(
     ValueError
         As :func:`fit_rbf`, and on a non-positive shape or a negative smoothing.
     """
-    space, z, d2, basis, y, logs = _prepare(points, values, is_direction, log_output, lo, span)
+    space, z, d2, basis, y, logs, trend = _prepare(points, values, is_direction, log_output, lo, span, trend)
     n_out = y.shape[1]
     q = np.broadcast_to(np.asarray(shape, dtype=float), (n_out,)).copy()
     lam = np.broadcast_to(np.asarray(smoothing, dtype=float), (n_out,)).copy()
@@ -178,7 +190,29 @@ def fit_rbf_fixed(
         raise ValueError(f"shape parameters must be positive, got {q}")
     if np.any(~(lam >= 0)):
         raise ValueError(f"smoothing must be non-negative, got {lam}")
-    return _assemble(space, z, d2, basis, y, q, lam, logs, retransform)
+    return _assemble(space, z, d2, basis, y, q, lam, logs, retransform, trend)
+
+
+def model_basis(points: np.ndarray, z: np.ndarray, is_direction: np.ndarray, trend: Trend | None) -> np.ndarray:
+    """The trend basis of a model: :func:`polynomial_basis` of ``z``, then the trend's columns.
+
+    Parameters
+    ----------
+    points : numpy.ndarray, shape (n, d)
+        Physical units (the trend's knots are in them).
+    z : numpy.ndarray, shape (n, d)
+        The same points normalised.
+    is_direction : numpy.ndarray of bool, shape (d,)
+    trend : Trend or None
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, p)
+    """
+    basis = polynomial_basis(z, is_direction)
+    if trend is None:
+        return basis
+    return np.hstack([basis, trend_basis(points, trend)])
 
 
 def centre_geometry(
@@ -187,8 +221,9 @@ def centre_geometry(
     *,
     lo: npt.ArrayLike | None = None,
     span: npt.ArrayLike | None = None,
+    trend: Trend | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Squared normalised distances between the training points and their polynomial basis.
+    """Squared normalised distances between the training points and their trend basis.
 
     The inputs of :func:`moorlife.rbf.loo_residuals` and :func:`moorlife.rbf.choose_per_output`,
     computed exactly as :func:`fit_rbf` computes them.
@@ -197,7 +232,7 @@ def centre_geometry(
     ----------
     points : array_like, shape (m, d)
     is_direction : array_like of bool, shape (d,)
-    lo, span : array_like (d,), optional
+    lo, span, trend : optional
         As :func:`fit_rbf`.
 
     Returns
@@ -208,7 +243,8 @@ def centre_geometry(
     x = as_points(points)
     space = fit_space(x, is_direction, lo=lo, span=span)
     z = embed(x, space)
-    return squared_distances(z, z, space.is_direction), polynomial_basis(z, space.is_direction)
+    trend = None if trend is None else supported_trend(trend, x)
+    return squared_distances(z, z, space.is_direction), model_basis(x, z, space.is_direction, trend)
 
 
 def _prepare(
@@ -218,8 +254,9 @@ def _prepare(
     log_output: bool | npt.ArrayLike,
     lo: npt.ArrayLike | None,
     span: npt.ArrayLike | None,
-) -> tuple[Space, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Checked, transformed values and the embedded centres: ``space, z, d2, basis, y, logs``."""
+    trend: Trend | None,
+) -> tuple[Space, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, Trend | None]:
+    """Checked, transformed values and the embedded centres: ``space, z, d2, basis, y, logs, trend``."""
     x = as_points(points)
     y = np.asarray(values, dtype=float)
     if y.ndim == 1:
@@ -242,10 +279,11 @@ def _prepare(
     space = fit_space(x, is_direction, lo=lo, span=span)
     z = embed(x, space)
     d2 = squared_distances(z, z, space.is_direction)
-    basis = polynomial_basis(z, space.is_direction)
+    trend = None if trend is None else supported_trend(trend, x)
+    basis = model_basis(x, z, space.is_direction, trend)
     if z.shape[0] < basis.shape[1] + 1:
         raise ValueError(f"{z.shape[0]} training points are too few for {basis.shape[1]} polynomial terms")
-    return space, z, d2, basis, y, logs
+    return space, z, d2, basis, y, logs, trend
 
 
 def _assemble(
@@ -258,6 +296,7 @@ def _assemble(
     lam: np.ndarray,
     logs: np.ndarray,
     retransform: str,
+    trend: Trend | None = None,
 ) -> RBFModel:
     """Weights, polynomial and leave-one-out residuals at the chosen ``(q0, lambda)`` per output."""
     if retransform not in RETRANSFORMS:
@@ -290,4 +329,5 @@ def _assemble(
         loo_error=loo,
         smoothing=lam,
         log_factor=factor,
+        trend=trend,
     )

@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from moorlife.rbf.fit import RBFModel
-from moorlife.rbf.kernels import _gaussian_block, _weighted_sum, polynomial_basis
+from moorlife.rbf.fit import RBFModel, model_basis
+from moorlife.rbf.kernels import _gaussian_block, _weighted_sum
 from moorlife.space import embed, nearest_block, sq_dist_block
 
 __all__ = ["predict_rbf", "nearest_centre"]
@@ -40,7 +40,7 @@ def predict_rbf(model: RBFModel, points: npt.ArrayLike, *, chunk_rows: int = 819
     isdir = model.space.is_direction.astype(np.bool_)
     groups = [(float(q), np.flatnonzero(model.shape == q)) for q in np.unique(model.shape)]
     w_t = {q: np.ascontiguousarray(model.weights[:, cols].T) for q, cols in groups}
-    basis = polynomial_basis(z, isdir)
+    basis = model_basis(np.asarray(points, dtype=float), z, isdir, model.trend)
     out = np.zeros((n, model.n_outputs))
     _weighted_sum(basis, np.ascontiguousarray(model.poly_coef.T), np.arange(model.n_outputs), out)
     rows = max(1, int(chunk_rows))
