@@ -26,7 +26,8 @@ west-north-west seas), so that the timing and the transform comparison are meani
    log10 (the lifecycle default is chosen from this and from the real simulations); and the
    error of the life damage (sum over every hour) against the true sum of the surfaces.
 5. The choice of ``lifecycle.rbf.choose``: ``lifecycle.fit_outputs`` + ``predict_outputs`` with
-   the default settings (``global``) and with ``per_output`` (spaces paper and thrust, with
+   the default settings (``global``), ``global`` in the ``wind_trend`` space, and with
+   ``per_output`` (spaces paper and thrust, with
    the NREL 5 MW thrust curve of ``config/platform.yaml``; transforms linear and log10, or the
    damage kept log10), with each back-transform correction, and the Gaussian process
    (``method: gp``, :mod:`moorlife.gp`) in the same run: cost, its ratio to the default,
@@ -278,6 +279,7 @@ def choice_section(pts, train, valid, y, y_val, labels, lo, span, gp_variants=Fa
     variants = {
         "global (default)": {},
         "global + smearing": {"retransform": "smearing"},
+        "global, wind_trend": {"space": "wind_trend"},
         "per_output": {"choose": "per_output"},
         "per_output, damage log10": {"choose": "per_output", "damage_transforms": ["log10"]},
         "  + smearing": {"choose": "per_output", "damage_transforms": ["log10"], "retransform": "smearing"},
