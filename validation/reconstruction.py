@@ -12,6 +12,7 @@ study, in this process, and measured:
 - on the truth window, where ``results/{ms}/truth.zarr`` exists: per-hour r of every output, the
   window's damage per line and curve against the truth's (``moorlife.truth.compare_window``, the
   arithmetic of the ``truth_compare`` rule), and the bias test below;
+- the design check of the life cycle: DFF x design-life damage of every line (S-N);
 - the CPU time of the fit and the prediction of every hour.
 
 Adaptive variants (``lifecycle.adaptive.rounds > 0``) are made at equal cost from the study's own
@@ -166,6 +167,8 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
     cpu = time.process_time() - t0
     out: dict[str, Any] = {"cpu": cpu, "n_train": int(lc.attrs["n_train"])}
     out["validation_r"] = pd.Series(lc["validation_r"].values, index=lc["output"].values.astype(object).astype(str))
+    sn = lc["utilisation"].sel(curve="sn")  # DFF x design-life damage per line: the design check
+    out["utilisation"] = pd.Series(sn.values, index=sn["line"].values.astype(object).astype(str))
     out["choice"] = pd.DataFrame(
         {k: lc[k].values for k in ("input_space", "transform", "retransform_factor", "shape_parameter", "smoothing")},
         index=out["validation_r"].index,
@@ -227,6 +230,11 @@ def report(res: dict[tuple[str, str], dict[str, Any]], variants: list[str]) -> s
             + " | ".join(f"{r[o]:.3f}" for o in dl)
             + f" | {m['cpu']:.1f} |"
         )
+    lines += ["", "### Life cycle: DFF x design-life damage per line (S-N), the design check", ""]
+    lines_ = list(next(iter(res.values()))["utilisation"].index)
+    lines += ["| system | variant | " + " | ".join(lines_) + " |", "|---" * (2 + len(lines_)) + "|"]
+    for (ms, v), m in res.items():
+        lines.append(f"| {ms} | {v} | " + " | ".join(f"{m['utilisation'][ln]:.3f}" for ln in lines_) + " |")
     with_truth = {k: m for k, m in res.items() if "truth_r" in m}
     if with_truth:
         lines += ["", "### Per-hour r on the truth window (noise floor: r of two seeds)", ""]
