@@ -34,7 +34,7 @@ from rbf_thrust_coordinate import load_study
 from moorlife import lifecycle as lc
 from moorlife import names, rbf
 
-IW, ID = names.METOCEAN_VARS.index("wind_speed"), names.METOCEAN_VARS.index("wind_dir")
+IW, ID, IV = (names.METOCEAN_VARS.index(v) for v in ("wind_speed", "wind_dir", "wave_dir"))
 #: The knots of the package's default (``lifecycle.rbf.wind_trend.knots``), and with knots at cut-out too.
 BAND = (3.0, 5.0, 7.0, 9.0, 10.5, 11.4, 12.0, 12.7, 13.5, 15.0, 17.5)
 CUTOUT = (*BAND, 20.0, 23.0, 25.0, 26.0)
@@ -44,6 +44,9 @@ VARIANTS = {
     "band_dir": rbf.Trend(IW, BAND, ID, 1),  # the package's wind_trend default
     "band_dir2": rbf.Trend(IW, BAND, ID, 2),
     "cutout_dir": rbf.Trend(IW, CUTOUT, ID, 1),
+    "band_dir3": rbf.Trend(IW, BAND, ID, 3),
+    "band_wave": rbf.Trend(IW, BAND, IV, 1),  # the harmonics of the wave direction instead
+    "coarse_dir": rbf.Trend(IW, (3.0, 7.0, 10.5, 11.4, 12.0, 13.0, 15.0, 17.5), ID, 1),
 }
 
 
@@ -80,15 +83,15 @@ def main(argv: list[str]) -> int:
     warnings.filterwarnings("ignore")
     results = argv[1]
     cases0 = xr.open_zarr(f"{results}/selection/cases.zarr", consolidated=False).load()
-    print("   output".ljust(19), *[k.rjust(12) for k in (*VARIANTS, "loo_log", "loo_units")])
+    print("   output".ljust(19), *[k.rjust(11) for k in (*VARIANTS, "loo_log", "loo_units")])
     for ms in argv[2:]:
         labels, res = validation_r(results, ms, cases0)
         for j, lab in enumerate(labels):
             if "_tn" in lab:
                 continue
-            print("  ", lab.ljust(16), *[f"{res[k][j]:12.4f}" for k in res])
-        print("   min".ljust(19), *[f"{res[k].min():12.4f}" for k in res])
-        print("   mean".ljust(19), *[f"{res[k].mean():12.4f}" for k in res], flush=True)
+            print("  ", lab.ljust(16), *[f"{res[k][j]:11.4f}" for k in res])
+        print("   min".ljust(19), *[f"{res[k].min():11.4f}" for k in res])
+        print("   mean".ljust(19), *[f"{res[k].mean():11.4f}" for k in res], flush=True)
     return 0
 
 
