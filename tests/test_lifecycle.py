@@ -625,6 +625,27 @@ def test_per_output_choice_takes_the_wind_trend_for_a_wind_band_only():
         lifecycle.RBFSettings.from_config({"wind_trend": {"knots": [12, 11]}}, source="c.yaml")
 
 
+def test_lifecycle_with_the_wind_trend_records_it_and_ignores_the_validation_states():
+    """The whole reconstruction in the wind_trend space: recorded per output, steered by training states only."""
+    hc = _hindcast(1500, seed=38)
+    cases = _cases(hc, 90, 25, seed=39)
+    sims = _sims(cases)
+    w = cases["wind_speed"].values
+    band = 1e-6 * np.exp(-(((w - 12.0) / 1.0) ** 2)) + 1e-8
+    sims["damage_sn"] = (("case", "line"), np.outer(band, [1.0, 0.5, 2.0]))
+    settings = lifecycle.RBFSettings.from_config(
+        {"space": "wind_trend", "grid": {"n": 8}, "wind_trend": {"knots": [6, 10, 12, 14, 18]}}
+    )
+    a = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=5)
+    assert set(a["input_space"].values) == {"wind_trend"}
+    val = cases["role"].values == "validate"
+    sims["damage_sn"][val] = sims["damage_sn"].values[val] * 3.0
+    b = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=5)
+    changed = [v for v in a.data_vars if not a[v].equals(b[v])]
+    assert changed and all(v.startswith("validation_") for v in changed), changed
+    np.testing.assert_array_equal(a["damage_sn"].values, b["damage_sn"].values)
+
+
 def test_per_output_fit_does_not_depend_on_the_validation_states():
     """Perturbing the validation outputs changes the validation metrics and nothing else."""
     curve = _thrust_curve()
