@@ -29,7 +29,7 @@ import warnings
 
 import numpy as np
 import xarray as xr
-from rbf_thrust_coordinate import load_study
+from rbf_thrust_coordinate import load_study, loo_pick, print_table
 
 from moorlife import lifecycle as lc
 from moorlife import names, rbf
@@ -72,9 +72,7 @@ def validation_r(results: str, ms: str, cases0: xr.Dataset) -> tuple[list[str], 
         loo_units[name][isd] = np.sqrt(np.mean(eu**2, axis=0))
         print(ms, name, "%.0f s" % (time.time() - t), flush=True)
     for label, score in (("loo_log", loo_log), ("loo_units", loo_units)):
-        k = np.argmin(np.stack([score[c] for c in VARIANTS]), axis=0)
-        p = np.column_stack([pred[list(VARIANTS)[kj]][:, j] for j, kj in enumerate(k)])
-        res[label] = lc.validation_metrics(p, y[va])["r"]
+        res[label], k = loo_pick(pred, score, list(VARIANTS), y[va])
         print(ms, label, "picks", "".join(str(v) for v in k), flush=True)
     return [lc._label(c) for c in cols], res
 
@@ -85,13 +83,7 @@ def main(argv: list[str]) -> int:
     cases0 = xr.open_zarr(f"{results}/selection/cases.zarr", consolidated=False).load()
     print("   output".ljust(19), *[k.rjust(11) for k in (*VARIANTS, "loo_log", "loo_units")])
     for ms in argv[2:]:
-        labels, res = validation_r(results, ms, cases0)
-        for j, lab in enumerate(labels):
-            if "_tn" in lab:
-                continue
-            print("  ", lab.ljust(16), *[f"{res[k][j]:11.4f}" for k in res])
-        print("   min".ljust(19), *[f"{res[k].min():11.4f}" for k in res])
-        print("   mean".ljust(19), *[f"{res[k].mean():11.4f}" for k in res], flush=True)
+        print_table(*validation_r(results, ms, cases0), width=11)
     return 0
 
 

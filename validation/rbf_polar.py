@@ -43,7 +43,7 @@ import warnings
 
 import numpy as np
 import xarray as xr
-from rbf_thrust_coordinate import load_study
+from rbf_thrust_coordinate import load_study, loo_pick, print_table
 
 from moorlife import lifecycle as lc
 from moorlife import names, rbf
@@ -99,9 +99,7 @@ def validation_r(results: str, ms: str, cases0: xr.Dataset, curve: ThrustCurve) 
         res[name] = lc.validation_metrics(pred[name], y[va])["r"]
         print(ms, name, "%.0f s" % (time.time() - t), flush=True)
     for label, cands in PICKS.items():  # per output, the candidate with the smallest LOO RMS
-        k = np.argmin(np.stack([loo[c] for c in cands]), axis=0)
-        p = np.column_stack([pred[cands[kj]][:, j] for j, kj in enumerate(k)])
-        res[label] = lc.validation_metrics(p, y[va])["r"]
+        res[label], k = loo_pick(pred, loo, cands, y[va])
         print(ms, label, "picks", "".join(str(v) for v in k), flush=True)
     return [lc._label(c) for c in cols], res
 
@@ -113,13 +111,7 @@ def main(argv: list[str]) -> int:
     cases0 = xr.open_zarr(f"{results}/selection/cases.zarr", consolidated=False).load()
     print("   output".ljust(19), *[k.rjust(13) for k in (*SPACES, *PICKS)])
     for ms in argv[2:]:
-        labels, res = validation_r(results, ms, cases0, curve)
-        for j, lab in enumerate(labels):
-            if "_tn" in lab:
-                continue
-            print("  ", lab.ljust(16), *[f"{res[k][j]:13.4f}" for k in res])
-        print("   min".ljust(19), *[f"{res[k].min():13.4f}" for k in res])
-        print("   mean".ljust(19), *[f"{res[k].mean():13.4f}" for k in res], flush=True)
+        print_table(*validation_r(results, ms, cases0, curve), width=13)
     return 0
 
 

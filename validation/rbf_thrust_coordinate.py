@@ -66,6 +66,24 @@ def load_study(results: str, ms: str, cases0: xr.Dataset) -> Study:
     )
 
 
+def loo_pick(pred: dict, score: dict, cands, y_val: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per output, the candidate of ``cands`` with the smallest ``score`` (a leave-one-out RMS on the
+    training states): the validation r of the picked predictions ``pred[c]``, and the picks."""
+    k = np.argmin(np.stack([score[c] for c in cands]), axis=0)
+    p = np.column_stack([pred[cands[kj]][:, j] for j, kj in enumerate(k)])
+    return lc.validation_metrics(p, y_val)["r"], k
+
+
+def print_table(labels: list[str], res: dict, width: int) -> None:
+    """One row per output (the S-N damage only: T-N is the same for m = 3), then the min and the mean."""
+    for j, lab in enumerate(labels):
+        if "_tn" in lab:
+            continue
+        print("  ", lab.ljust(16), *[f"{res[k][j]:{width}.4f}" for k in res])
+    print("   min".ljust(19), *[f"{res[k].min():{width}.4f}" for k in res])
+    print("   mean".ljust(19), *[f"{res[k].mean():{width}.4f}" for k in res], flush=True)
+
+
 def validation_r(results: str, ms: str, cases0: xr.Dataset, ws: np.ndarray, ct: np.ndarray) -> tuple[list[str], dict]:
     """Validation r per output of one system in each space of :data:`SPACES`."""
     s = load_study(results, ms, cases0)
