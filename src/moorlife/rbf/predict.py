@@ -40,9 +40,10 @@ def predict_rbf(model: RBFModel, points: npt.ArrayLike, *, chunk_rows: int = 819
     isdir = model.space.is_direction.astype(np.bool_)
     groups = [(float(q), np.flatnonzero(model.shape == q)) for q in np.unique(model.shape)]
     w_t = {q: np.ascontiguousarray(model.weights[:, cols].T) for q, cols in groups}
-    basis = model_basis(np.asarray(points, dtype=float), z, isdir, model.trend)
+    x = np.asarray(points, dtype=float)
+    poly_t = np.ascontiguousarray(model.poly_coef.T)
+    every = np.arange(model.n_outputs)
     out = np.zeros((n, model.n_outputs))
-    _weighted_sum(basis, np.ascontiguousarray(model.poly_coef.T), np.arange(model.n_outputs), out)
     rows = max(1, int(chunk_rows))
     d2 = np.empty((min(rows, n), m))
     k = np.empty_like(d2)
@@ -50,6 +51,8 @@ def predict_rbf(model: RBFModel, points: npt.ArrayLike, *, chunk_rows: int = 819
     for s in range(0, n, rows):
         e = min(n, s + rows)
         b = e - s
+        # the trend first, then the kernel sums: per row the same order as one block of every row
+        _weighted_sum(model_basis(x[s:e], z[s:e], isdir, model.trend), poly_t, every, out[s:e])
         sq_dist_block(z[s:e], zc_t, isdir, d2[:b])
         for q, cols in groups:
             _gaussian_block(d2[:b], 1.0 / (q * q), k[:b], tmp[:b])
