@@ -22,6 +22,14 @@ phases), then the rounds, picked by ``moorlife.selection.rounds.pick_round`` and
 simulate stage itself into ``--work/{ms}/{variant}/`` (resumable; reused when present). The
 validation states are the study's, so every variant is measured on the same 225 realisations.
 
+With ``--validation-seeds K`` (K >= 2), the 225 validation states are simulated K - 1 more times
+(random streams ``validation_seed2`` .. ``validation_seedK``, into ``--work/{ms}/validation_seeds/``,
+resumable) and every variant is also measured against the mean of the K records. The noise
+ceiling of the validation r is reported beside it: ``sqrt(r1)`` for one record, with ``r1`` the
+mean correlation of two records, and ``sqrt(K r1 / (1 + (K - 1) r1))`` for their mean (the
+correlation of a perfect reconstruction with them). A variant below the ceiling by more than
+the noise is limited by interpolation, not by the seed.
+
 The bias test: for each line and curve, ``z = (reconstruction - truth) / sd``, with ``sd`` the seed
 scatter of the truth's window sum (``seed_sum_std_pct``, from the second-seed hours). ``|z| <= 2``
 is "within the seed noise". Systematic bias shows as z of one sign on every line.
@@ -139,6 +147,44 @@ def simulate_cases(
     )
 
 
+def validation_records(
+    cfg: dict[str, Any], ms: str, results: Path, work: Path, cases: xr.Dataset, k: int
+) -> list[xr.Dataset]:
+    """Records 2 .. ``k`` of the validation states of ``cases`` (random streams
+    ``validation_seed{j}``), simulated by the simulate stage into ``work`` (reused when present)."""
+    from moorlife.io import write_zarr
+
+    role = cases["role"].values.astype(object).astype(str)
+    vpath = work / "cases.zarr"
+    if not vpath.exists():
+        work.mkdir(parents=True, exist_ok=True)
+        write_zarr(cases.isel(case=np.flatnonzero(role == "validate")), vpath)
+    out = []
+    for j in range(2, k + 1):
+        store = work / f"seed{j}.zarr"
+        if not store.exists():
+            simulate_cases(
+                cfg, ms, results, vpath, store, stream=f"validation_seed{j}", threads=2, log=work / f"seed{j}.log"
+            )
+        out.append(_open(store))
+    return out
+
+
+def seed_ceiling(records: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The noise ceilings of a validation r, per output, from ``records`` (k >= 2, states, outputs):
+    ``sqrt(r1)`` against one record and ``sqrt(k r1 / (1 + (k - 1) r1))`` against their mean, with
+    ``r1`` the mean correlation of two records of the same states."""
+    k = records.shape[0]
+    pairs = [(a, b) for a in range(k) for b in range(a + 1, k)]
+    r1 = np.mean([_column_r(records[a], records[b]) for a, b in pairs], axis=0)
+    return np.sqrt(r1), np.sqrt(k * r1 / (1.0 + (k - 1) * r1))
+
+
+def _column_r(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    a, b = a - a.mean(axis=0), b - b.mean(axis=0)
+    return np.sum(a * b, axis=0) / np.sqrt(np.sum(a * a, axis=0) * np.sum(b * b, axis=0))
+
+
 def _schema() -> dict[str, Any]:
     from moorlife.io import read_yaml
 
@@ -194,7 +240,33 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
         # writes them (moorlife.truth; validation/band_calibration.py reads the same columns)
         out["window"] = dmg
         out["n_hours"] = int(cmp.attrs["n_hours"])
+    if stores.get("validation_records"):
+        out.update(against_records(lc, stores["validation_records"], settings.outputs))
     return out
+
+
+def against_records(lc: xr.Dataset, records: list[xr.Dataset], outputs: Any) -> dict[str, pd.Series]:
+    """The validation r of ``lc`` against the mean of its own validation record and ``records``,
+    and the noise ceilings (:func:`seed_ceiling`)."""
+    from moorlife import lifecycle, names
+
+    labels = lc["output"].values.astype(object).astype(str)
+    ids = lc["validate"].values
+    stack = [lc["validation_simulated"].values]
+    for rec in records:
+        cols = lifecycle.output_columns(rec, names.CASE, outputs)
+        y = lifecycle.stack_outputs(rec.sel({names.CASE: ids}), names.CASE, cols)
+        order = [[lifecycle._label(c) for c in cols].index(o) for o in labels]
+        stack.append(y[:, order])
+    y = np.stack(stack)
+    c1, ck = seed_ceiling(y)
+    r = _column_r(lc["validation_predicted"].values, y.mean(axis=0))
+    return {
+        "records_r": pd.Series(r, index=labels),
+        "ceiling_one": pd.Series(c1, index=labels),
+        "ceiling_mean": pd.Series(ck, index=labels),
+        "n_records": len(stack),
+    }
 
 
 def load(results: Path, ms: str) -> dict[str, xr.Dataset] | None:
@@ -235,6 +307,29 @@ def report(res: dict[tuple[str, str], dict[str, Any]], variants: list[str]) -> s
     lines += ["| system | variant | " + " | ".join(lines_) + " |", "|---" * (2 + len(lines_)) + "|"]
     for (ms, v), m in res.items():
         lines.append(f"| {ms} | {v} | " + " | ".join(f"{m['utilisation'][ln]:.3f}" for ln in lines_) + " |")
+    with_records = {k: m for k, m in res.items() if "records_r" in m}
+    if with_records:
+        n = next(iter(with_records.values()))["n_records"]
+        lines += ["", f"### Validation r against the mean of {n} records of each state (the ceilings: a perfect", ""]
+        lines[-2] += " reconstruction against one record / against the mean)"
+        shown = dl + ["accel_mpm"]
+        lines += [
+            "| system | variant | min r (output) | " + " | ".join(shown) + " |",
+            "|---" * (3 + len(shown)) + "|",
+        ]
+        for (ms, v), m in with_records.items():
+            r = m["records_r"]
+            lines.append(
+                f"| {ms} | {v} | {r.min():.3f} ({r.idxmin()}) | " + " | ".join(f"{r[o]:.3f}" for o in shown) + " |"
+            )
+            if v == variants[0]:
+                for key, what in (("ceiling_one", "ceiling, one record"), ("ceiling_mean", f"ceiling, mean of {n}")):
+                    c = m[key]
+                    lines.append(
+                        f"| {ms} | {what} | {c.min():.3f} ({c.idxmin()}) | "
+                        + " | ".join(f"{c[o]:.3f}" for o in shown)
+                        + " |"
+                    )
     with_truth = {k: m for k, m in res.items() if "truth_r" in m}
     if with_truth:
         lines += ["", "### Per-hour r on the truth window (noise floor: r of two seeds)", ""]
@@ -297,6 +392,13 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--variant", action="append", default=[], help="NAME=OVERLAY[,OVERLAY...] (empty: config.yaml)")
     p.add_argument("--work", type=Path, default=ROOT / "results" / "validation_rounds")
     p.add_argument("--choices", action="store_true", help="also print each variant's per-output choices")
+    p.add_argument(
+        "--validation-seeds",
+        type=int,
+        default=1,
+        metavar="K",
+        help="also measure against the mean of K records of each validation state (K - 1 simulated)",
+    )
     a = p.parse_args(argv)
     variants = {}
     for spec in a.variant or ["paper="]:
@@ -308,6 +410,11 @@ def main(argv: list[str] | None = None) -> int:
         if stores is None:
             print(f"{ms}: no simulations under {a.results}, skipped", file=sys.stderr)
             continue
+        if a.validation_seeds > 1:
+            first = next(iter(variants.values()))
+            stores["validation_records"] = validation_records(
+                first, ms, a.results, a.work / ms / "validation_seeds", stores["cases"], a.validation_seeds
+            )
         for name, cfg in variants.items():
             res[(ms, name)] = m = measure(cfg, ms, a.results, a.work / ms / name, stores)
             print(f"{ms} {name}: min validation r {m['validation_r'].min():.4f}, {m['cpu']:.1f} CPU-s", file=sys.stderr)
