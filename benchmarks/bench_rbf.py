@@ -293,6 +293,8 @@ def choice_section(pts, train, valid, y, y_val, labels, lo, span, gp_variants=Fa
                 "gp, isotropic": {"method": "gp", "gp": {"kernel": "isotropic"}},
                 "gp, thrust": {"method": "gp", "gp": {"thrust": True}},
                 "gp, subsample 300": {"method": "gp", "gp": {"subsample": 300}},
+                "gp, share variable": {"method": "gp", "gp": {"share": "variable"}},
+                "gp, share all": {"method": "gp", "gp": {"share": "all"}},
             }
         )
     table = {}

@@ -180,3 +180,48 @@ def test_bad_settings_are_refused():
         lifecycle.RBFSettings.from_config({"method": "gp", "choose": "per_output"})
     with pytest.raises(ValueError, match="min <= initial <= max"):
         lifecycle.RBFSettings.from_config({"method": "gp", "gp": {"noise": {"initial": 2.0}}})
+
+
+def test_shared_hyperparameters_fit_the_group_jointly():
+    """groups: one scikit-learn fit of a group's columns; its outputs share the length scales,
+    the noise over signal ratio, the Cholesky factor and the prediction's kernel row."""
+    x = _states(90, 20)
+    rng = np.random.default_rng(21)
+    f = _smooth(x)
+    y = np.column_stack([f + rng.normal(0, 0.1, 90), 3.0 * f + 7.0 + rng.normal(0, 0.3, 90), np.sin(x[:, 3])])
+    kw = dict(is_direction=MASK, subsample=0)
+    alone = gp.fit_gp(x, y, **kw)
+    shared = gp.fit_gp(x, y, groups=[0, 0, 1], **kw)
+    np.testing.assert_array_equal(shared.length_scale[0], shared.length_scale[1])
+    np.testing.assert_array_equal(shared.chol[0], shared.chol[1])
+    assert shared.noise_var[0] / shared.signal_var[0] == shared.noise_var[1] / shared.signal_var[1]
+    assert not np.array_equal(shared.length_scale[0], alone.length_scale[0])  # a joint fit, not the first column's
+    # the joint fit is scikit-learn's own on the stacked columns
+    z = gp.chord_embed(x, shared.space)
+    k = C(1.0, (1e-3, 1e3)) * RBF(np.full(7, 0.3), (0.01, 100.0)) + WhiteKernel(1e-2, (1e-8, 1.0))
+    ref = GaussianProcessRegressor(k, alpha=0.0, normalize_y=True, random_state=0).fit(z, y[:, :2])
+    np.testing.assert_allclose(shared.length_scale[0], ref.kernel_.k1.k2.length_scale, rtol=1e-6)
+    # a singleton group is the per-output fit, bit for bit
+    for name in ("length_scale", "signal_var", "noise_var", "chol"):  # output first
+        np.testing.assert_array_equal(getattr(shared, name)[2], getattr(alone, name)[2], err_msg=name)
+    for name in ("weights", "loo_error"):  # output last
+        np.testing.assert_array_equal(getattr(shared, name)[:, 2], getattr(alone, name)[:, 2], err_msg=name)
+    xq = _states(300, 22)
+    p_shared, p_alone = gp.predict_gp(shared, xq), gp.predict_gp(alone, xq)
+    np.testing.assert_array_equal(p_shared[:, 2], p_alone[:, 2])
+    # two noisy records of one surface: sharing pools them, and each column stays its own scale
+    assert np.corrcoef(p_shared[:, 1], 3.0 * _smooth(xq) + 7.0)[0, 1] > 0.98
+    with pytest.raises(ValueError, match="one label per output"):
+        gp.fit_gp(x, y, groups=[0, 1], **kw)
+
+
+def test_gp_share_groups_the_outputs_of_a_variable():
+    cols = [("surge_mpm", None), ("damage_sn", "M1"), ("damage_tn", "M2"), ("tension_mpm", "M1"), ("tension_mpm", "M2")]
+    assert lifecycle.gp_groups(cols, "none") is None
+    np.testing.assert_array_equal(lifecycle.gp_groups(cols, "all"), [0, 0, 0, 0, 0])
+    g = lifecycle.gp_groups(cols, "variable")
+    assert g[1] == g[2] and g[3] == g[4] and len({g[0], g[1], g[3]}) == 3
+    s = lifecycle.RBFSettings.from_config({"method": "gp", "gp": {"share": "variable"}})
+    assert s.gp.share == "variable"
+    with pytest.raises(ValueError, match="share"):
+        lifecycle.RBFSettings.from_config({"method": "gp", "gp": {"share": "lines"}})

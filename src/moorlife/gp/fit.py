@@ -158,6 +158,7 @@ def fit_gp(
     seed: int = 0,
     subsample: int = 0,
     retransform: str = "noise",
+    groups: npt.ArrayLike | None = None,
 ) -> GPModel:
     """Fit one Gaussian process with a noise term per output column.
 
@@ -194,6 +195,12 @@ def fit_gp(
         Training states of the hyperparameter fit (0: all).
     retransform : {"none", "noise", "predictive"}
         Back-transform of the ``log10`` outputs (:mod:`moorlife.gp`).
+    groups : array_like of int, shape (n_out,), optional
+        Outputs with the same label share their hyperparameters: one scikit-learn fit of the
+        group's columns together (``normalize_y`` standardises each column, and the log marginal
+        likelihood is summed over them), so they share the length scales and the signal and noise
+        variances as fractions of each column's variance; the prediction then evaluates one
+        kernel row per group. Default: every output its own.
 
     Returns
     -------
@@ -236,22 +243,34 @@ def fit_gp(
         sub = np.sort(np.random.default_rng(seed).choice(m, int(subsample), replace=False))
     ls0 = np.full(p, length_scale[0]) if kernel == "ard" else length_scale[0]
     ls = np.empty((n_out, p))
-    sig, noi, mean = np.empty(n_out), np.empty(n_out), y.mean(axis=0)
-    for j in range(n_out):
+    sig, noi, ratio, mean = np.empty(n_out), np.empty(n_out), np.empty(n_out), y.mean(axis=0)
+    for cols in _output_groups(groups, n_out):
         k = C(signal[0], signal[1:]) * RBF(ls0, length_scale[1:]) + WhiteKernel(noise[0], noise[1:])
         gpr = GaussianProcessRegressor(k, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", ConvergenceWarning)
-            gpr.fit(z[sub], y[sub, j])
+            gpr.fit(z[sub], y[sub, cols[0]] if cols.size == 1 else y[np.ix_(sub, cols)])
         for w in caught:
             if issubclass(w.category, ConvergenceWarning):
-                log.info("GP output %d: %s", j, str(w.message).splitlines()[0])
+                log.info("GP outputs %s: %s", cols.tolist(), str(w.message).splitlines()[0])
         kf = gpr.kernel_
-        scale2 = float(gpr._y_train_std) ** 2
-        ls[j] = np.broadcast_to(kf.k1.k2.length_scale, (p,))
-        sig[j] = kf.k1.k1.constant_value * scale2
-        noi[j] = kf.k2.noise_level * scale2
-    return _condition(space, z, y, ls, sig, noi, mean, logs, retransform)
+        scale2 = np.broadcast_to(np.asarray(gpr._y_train_std, dtype=float) ** 2, (cols.size,))
+        ls[cols] = np.broadcast_to(kf.k1.k2.length_scale, (p,))
+        sig[cols] = kf.k1.k1.constant_value * scale2
+        noi[cols] = kf.k2.noise_level * scale2
+        ratio[cols] = noi[cols[0]] / sig[cols[0]]  # one value per group, so its outputs share B
+    return _condition(space, z, y, ls, sig, noi, ratio, mean, logs, retransform)
+
+
+def _output_groups(groups: npt.ArrayLike | None, n_out: int) -> list[np.ndarray]:
+    """The output columns of each hyperparameter group, in order of first output."""
+    if groups is None:
+        return [np.array([j]) for j in range(n_out)]
+    g = np.asarray(groups)
+    if g.shape != (n_out,):
+        raise ValueError(f"groups has shape {g.shape}, expected ({n_out},): one label per output")
+    _, first, inverse = np.unique(g, return_index=True, return_inverse=True)
+    return [np.flatnonzero(inverse.reshape(-1) == k) for k in np.argsort(first)]
 
 
 def _checked(values: npt.ArrayLike, m: int) -> np.ndarray:
@@ -274,25 +293,36 @@ def _condition(
     ls: np.ndarray,
     sig: np.ndarray,
     noi: np.ndarray,
+    ratio: np.ndarray,
     mean: np.ndarray,
     logs: np.ndarray,
     retransform: str,
 ) -> GPModel:
-    """Condition every output's process on all training states: weights, Cholesky factors, leave-one-out."""
+    """Condition every output's process on all training states: weights, Cholesky factors, leave-one-out.
+
+    ``B = R + ratio I`` (``R`` the correlation, ``ratio`` the noise over the signal variance) is
+    factored once per distinct ``(length scales, ratio)``: the outputs of a group share it."""
     m, n_out = y.shape
     weights = np.empty_like(y)
     loo = np.empty_like(y)
     loo_var = np.empty_like(y)
     chol = np.empty((n_out, m, m))
+    done: dict[bytes, tuple[int, np.ndarray]] = {}  # outputs of one group share B: factor it once
     for j in range(n_out):
-        b = correlation(z, z, ls[j])
-        b[np.diag_indices(m)] += noi[j] / sig[j]
-        chol[j] = sla.cholesky(b, lower=True, check_finite=False)
+        key = ls[j].tobytes() + np.float64(ratio[j]).tobytes()
+        if key in done:
+            first, d = done[key]
+            chol[j] = chol[first]
+        else:
+            b = correlation(z, z, ls[j])
+            b[np.diag_indices(m)] += ratio[j]
+            chol[j] = sla.cholesky(b, lower=True, check_finite=False)
+            l_inv, info = sla.lapack.dtrtri(chol[j], lower=1)
+            if info != 0:
+                raise np.linalg.LinAlgError(f"output {j}: the GP's Cholesky factor is singular (dtrtri info {info})")
+            d = np.einsum("ij,ij->j", l_inv, l_inv)  # diag(B^-1) = column sums of squares of L^-1
+            done[key] = (j, d)
         weights[:, j] = sla.cho_solve((chol[j], True), y[:, j] - mean[j], check_finite=False)
-        l_inv, info = sla.lapack.dtrtri(chol[j], lower=1)
-        if info != 0:
-            raise np.linalg.LinAlgError(f"output {j}: the GP's Cholesky factor is singular (dtrtri info {info})")
-        d = np.einsum("ij,ij->j", l_inv, l_inv)  # diag(B^-1) = column sums of squares of L^-1
         loo[:, j] = weights[:, j] / d
         loo_var[:, j] = sig[j] / d
     factor = np.ones(n_out)

@@ -55,6 +55,7 @@ from moorlife.lifecycle.damage import (
 from moorlife.lifecycle.fit import (
     Reconstruction,
     fit_outputs,
+    gp_groups,
     loo_errors_in_units,
     predict_outputs,
     validation_metrics,
@@ -97,6 +98,7 @@ __all__ = [
     "validation_metrics",
     "Reconstruction",
     "fit_outputs",
+    "gp_groups",
     "predict_outputs",
     "ThrustCurve",
     "thrust_curve",

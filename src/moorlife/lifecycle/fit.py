@@ -441,6 +441,22 @@ def _fit_per_output(
     return _combine(models, columns, used, thrust, space, centres, "per_output", choice.loo_rmse)
 
 
+def gp_groups(cols: Sequence[tuple[str, str | None]], share: str) -> np.ndarray | None:
+    """The hyperparameter group of every output column under ``lifecycle.rbf.gp.share``.
+
+    ``none``: no groups (every output its own); ``variable``: one group per variable, the damage
+    of every line and curve being one variable; ``all``: one group.
+    """
+    if share == "none":
+        return None
+    if share == "all":
+        return np.zeros(len(cols), dtype=np.int64)
+    if share != "variable":
+        raise ValueError(f"lifecycle.rbf.gp.share = {share!r}; expected none, variable or all")
+    keys = ["damage" if c[0].startswith("damage") else c[0] for c in cols]
+    return np.unique(keys, return_inverse=True)[1].reshape(-1).astype(np.int64)
+
+
 def _fit_gp(
     points: np.ndarray,
     values: np.ndarray,
@@ -476,6 +492,7 @@ def _fit_gp(
         seed=g.seed,
         subsample=g.subsample,
         retransform=g.retransform,
+        groups=gp_groups(cols, g.share),
     )
     e = model.loo_error.copy()
     if logs.any():

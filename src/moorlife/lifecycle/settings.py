@@ -41,6 +41,8 @@ class GPSettings:
         Back-transform of ``log10`` outputs (:mod:`moorlife.gp`).
     indicator : {"loo", "sd"}
         Error indicator (:func:`moorlife.lifecycle.error_indicator`).
+    share : {"none", "variable", "all"}
+        Outputs that share their hyperparameters (:func:`moorlife.gp.fit_gp`'s ``groups``).
     """
 
     kernel: str
@@ -53,6 +55,7 @@ class GPSettings:
     thrust: bool
     retransform: str
     indicator: str
+    share: str
 
     @classmethod
     def from_section(cls, g: Mapping[str, Any], source: str = "config.yaml") -> GPSettings:
@@ -80,6 +83,7 @@ class GPSettings:
             thrust=bool(g["thrust"]),
             retransform=str(g["retransform"]),
             indicator=str(g["indicator"]),
+            share=str(g["share"]),
         )
 
 
