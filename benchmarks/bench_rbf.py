@@ -272,7 +272,8 @@ def choice_section(pts, train, valid, y, y_val, labels, lo, span, gp_variants=Fa
     from moorlife.io import read_yaml
 
     curve = lifecycle.thrust_curve(read_yaml(Path(__file__).resolve().parents[1] / "config/platform.yaml"))
-    cols = [(lab, None) for lab in labels]
+    # (variable, line) as the lifecycle names them: tension_mpm_M1 -> (tension_mpm, M1)
+    cols = [tuple(lab.rsplit("_", 1)) if lab[-2:-1] == "M" else (lab, None) for lab in labels]
     is_dmg = np.array([lab.startswith("damage") for lab in labels])
     y_all, _ = responses(pts)
     true_sum = y_all[:, is_dmg].sum(axis=0)
