@@ -225,3 +225,65 @@ def test_gp_share_groups_the_outputs_of_a_variable():
     assert s.gp.share == "variable"
     with pytest.raises(ValueError, match="share"):
         lifecycle.RBFSettings.from_config({"method": "gp", "gp": {"share": "lines"}})
+
+
+def _gls_reference(z, ty, ls, ratio, zq):
+    """Universal kriging by hand: the GLS mean of [1, z] with B = R + ratio I, and its prediction at zq."""
+    h = np.column_stack([np.ones(len(z)), z])
+    b = gp.correlation(z, z, ls) + ratio * np.eye(len(z))
+    bi = np.linalg.inv(b)
+    beta = np.linalg.solve(h.T @ bi @ h, h.T @ bi @ ty)
+    w = bi @ (ty - h @ beta)
+    return np.column_stack([np.ones(len(zq)), zq]) @ beta + gp.correlation(zq, z, ls) @ w
+
+
+def test_linear_prior_mean_is_universal_kriging():
+    """prior_mean='linear': GLS coefficients, prediction and leave-one-out as written out by hand."""
+    x = _states(50, 30)
+    rng = np.random.default_rng(31)
+    y = np.column_stack([2.0 + 0.3 * x[:, 0] + 0.2 * x[:, 3] + _smooth(x), np.exp(0.3 * x[:, 2])])
+    y = y * rng.lognormal(0, 0.05, y.shape)
+    model = gp.fit_gp(x, y, is_direction=MASK, log_output=[False, True], prior_mean="linear", retransform="none")
+    z = gp.chord_embed(x, model.space)
+    ty = np.column_stack([y[:, 0], np.log10(y[:, 1])])
+    xq = _states(30, 32)
+    zq = gp.chord_embed(xq, model.space)
+    p = gp.predict_gp(model, xq)
+    for j in range(2):
+        ratio = model.noise_var[j] / model.signal_var[j]
+        ref = _gls_reference(z, ty[:, j], model.length_scale[j], ratio, zq)
+        np.testing.assert_allclose(p[:, j] if j == 0 else np.log10(p[:, j]), ref, rtol=1e-8, atol=1e-9)
+        brute = np.empty(50)  # leave-one-out: the mean re-estimated without each state
+        for i in range(50):
+            keep = np.arange(50) != i
+            brute[i] = ty[i, j] - _gls_reference(z[keep], ty[keep, j], model.length_scale[j], ratio, z[i : i + 1])[0]
+        np.testing.assert_allclose(model.loo_error[:, j], brute, rtol=1e-6, atol=1e-9)
+    assert model.slope.shape == (7, 2)
+    assert gp.fit_gp(x, y, is_direction=MASK).slope is None  # the constant mean, as before
+
+
+def test_linear_prior_mean_follows_a_trend_beyond_the_data():
+    """Away from the training states the constant mean pulls the prediction back; the linear one does not."""
+    x = _states(80, 33)
+    x[:, 0] = np.random.default_rng(34).uniform(0, 15, 80)  # training winds 0-15 m/s
+    f = lambda p: 1.0 + 0.4 * p[:, 0] + 0.2 * np.cos(np.deg2rad(p[:, 4]))  # noqa: E731
+    y = f(x) + np.random.default_rng(35).normal(0, 0.02, 80)
+    xq = _states(200, 36)
+    xq[:, 0] = np.random.default_rng(37).uniform(20, 25, 200)  # and predict at 20-25 m/s
+    kw = dict(is_direction=MASK, lo=[0, 0, 0.3, 4, 0], span=[25, 180, 5.7, 14, 180], subsample=0)
+    err_const = np.abs(gp.predict_gp(gp.fit_gp(x, y, **kw), xq)[:, 0] - f(xq))
+    err_lin = np.abs(gp.predict_gp(gp.fit_gp(x, y, prior_mean="linear", **kw), xq)[:, 0] - f(xq))
+    assert np.median(err_lin) < 0.1 < np.median(err_const)
+
+
+def test_linear_prior_mean_refuses_the_latent_variance():
+    x = _states(20, 38)
+    with pytest.raises(ValueError, match="prior mean"):
+        gp.fit_gp(x, x[:, 2], is_direction=MASK, prior_mean="quadratic")
+    with pytest.raises(ValueError, match="predictive"):
+        gp.fit_gp(x, x[:, 2], is_direction=MASK, prior_mean="linear", retransform="predictive")
+    model = gp.fit_gp(x, x[:, 2], is_direction=MASK, prior_mean="linear")
+    with pytest.raises(ValueError, match="latent variance"):
+        gp.predict_latent(model, x, variance_of=[True])
+    with pytest.raises(ValueError, match="gp.mean = 'linear'"):
+        lifecycle.RBFSettings.from_config({"method": "gp", "gp": {"mean": "linear", "indicator": "sd"}})

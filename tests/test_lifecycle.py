@@ -718,8 +718,11 @@ def test_per_output_transform_candidates_per_output_kind():
 GP = {"method": "gp", "outputs": list(lifecycle.DEFAULT_OUTPUTS), "gp": {"subsample": 40}}
 
 
-@pytest.mark.parametrize("share", ["none", "variable"])
-def test_gp_fit_does_not_depend_on_the_validation_states(share):
+@pytest.mark.parametrize(
+    ("share", "mean", "indicator"),
+    [("none", "constant", "sd"), ("variable", "constant", "sd"), ("all", "linear", "loo")],
+)
+def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator):
     """method: gp: perturbing the validation outputs changes the validation metrics and nothing else."""
     curve = _thrust_curve()
     hc = _hindcast(1500, seed=30)
@@ -728,16 +731,16 @@ def test_gp_fit_does_not_depend_on_the_validation_states(share):
     y = _ridge_outputs(cases, curve)
     sims["damage_sn"] = (("case", "line"), np.outer(y[:, 0], [1.0, 0.5, 2.0]))
     sims["heave_mpm"] = ("case", y[:, 1])
-    gp_cfg = {"subsample": 40, "thrust": True, "indicator": "sd", "share": share}
+    gp_cfg = {"subsample": 40, "thrust": True, "indicator": indicator, "share": share, "mean": mean}
     settings = lifecycle.RBFSettings.from_config({**GP, "gp": gp_cfg})
     a = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=5, thrust=curve)
-    assert a.attrs["gp_share"] == share
+    assert a.attrs["gp_share"] == share and a.attrs["gp_mean"] == mean
     dmg = [o for o in a["output"].values.astype(object) if o.startswith("damage")]
     same = [
         np.array_equal(a["gp_length_scale"].sel(output=o).values, a["gp_length_scale"].sel(output=dmg[0]).values)
         for o in dmg
     ]
-    assert all(same) == (share == "variable")  # one set of hyperparameters for the damage of every line
+    assert all(same) == (share != "none")  # one set of hyperparameters for the damage of every line
     val = cases["role"].values == "validate"
     rng = np.random.default_rng(32)
     for v in ("damage_sn", "heave_mpm", "surge_mpm", "tension_mpm"):

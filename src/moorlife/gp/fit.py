@@ -14,12 +14,25 @@ import scipy.linalg as sla
 from moorlife.rbf.kernels import _gaussian_block
 from moorlife.space import Space, as_points, fit_space, sq_dist_block
 
-__all__ = ["GPModel", "GP_KERNELS", "GP_RETRANSFORMS", "chord_embed", "embedded_names", "correlation", "fit_gp"]
+__all__ = [
+    "GPModel",
+    "GP_KERNELS",
+    "GP_MEANS",
+    "GP_RETRANSFORMS",
+    "chord_embed",
+    "embedded_names",
+    "correlation",
+    "fit_gp",
+]
 
 log = logging.getLogger("moorlife.gp")
 
 #: Kernels: one length scale per embedded coordinate (``ard``), or one for all (``isotropic``).
 GP_KERNELS: tuple[str, ...] = ("ard", "isotropic")
+#: Prior means: the training mean (``constant``), or a first-degree polynomial of the embedded
+#: inputs estimated by generalised least squares with the process's covariance (``linear``:
+#: universal kriging).
+GP_MEANS: tuple[str, ...] = ("constant", "linear")
 #: Back-transforms of a ``log10`` output (module :mod:`moorlife.gp`).
 GP_RETRANSFORMS: tuple[str, ...] = ("none", "noise", "predictive")
 
@@ -31,7 +44,7 @@ class GPModel:
     """A fitted multi-output Gaussian process (one set of hyperparameters per output; immutable arrays).
 
     The posterior mean of output ``j`` at a point ``x`` (embedded by :func:`chord_embed`) is
-    ``mean_j + sum_i rho_j(x, c_i) w_ij`` with ``rho_j(x, c) = exp(-|(x - c) / l_j|^2 / 2)`` the
+    ``mean_j + x . slope_j + sum_i rho_j(x, c_i) w_ij`` (no slope with a constant prior mean) with ``rho_j(x, c) = exp(-|(x - c) / l_j|^2 / 2)`` the
     unit-amplitude Gaussian correlation; its latent variance is
     ``signal_var_j (1 - rho^T B_j^-1 rho)`` with ``B_j = R_j + (noise_var_j / signal_var_j) I``
     (``R_j`` the correlation matrix of the training states), whose Cholesky factor is ``chol[j]``.
@@ -47,9 +60,10 @@ class GPModel:
     signal_var, noise_var : numpy.ndarray, shape (n_out,)
         Signal and noise variances in the interpolated (transformed) units.
     mean : numpy.ndarray, shape (n_out,)
-        The constant prior mean (the training mean of the transformed values).
+        The constant prior mean (the training mean of the transformed values), or the intercept
+        of the linear one.
     weights : numpy.ndarray, shape (m, n_out)
-        ``B_j^-1 (y_j - mean_j)``.
+        ``B_j^-1 (y_j - prior mean_j)``.
     chol : numpy.ndarray, shape (n_out, m, m)
         Lower Cholesky factor of every ``B_j``.
     log_output : numpy.ndarray of bool, shape (n_out,)
@@ -62,6 +76,8 @@ class GPModel:
         ``retransform="none"``): ``exp((ln 10)^2 noise_var / 2)``.
     retransform : str
         One of :data:`GP_RETRANSFORMS`.
+    slope : numpy.ndarray, shape (p, n_out), or None
+        The slopes of a linear prior mean along the embedded coordinates (``None``: constant).
     """
 
     space: Space
@@ -77,6 +93,7 @@ class GPModel:
     loo_var: np.ndarray
     log_factor: np.ndarray
     retransform: str
+    slope: np.ndarray | None = None
 
     @property
     def n_outputs(self) -> int:
@@ -159,6 +176,7 @@ def fit_gp(
     subsample: int = 0,
     retransform: str = "noise",
     groups: npt.ArrayLike | None = None,
+    prior_mean: str = "constant",
 ) -> GPModel:
     """Fit one Gaussian process with a noise term per output column.
 
@@ -201,6 +219,13 @@ def fit_gp(
         likelihood is summed over them), so they share the length scales and the signal and noise
         variances as fractions of each column's variance; the prediction then evaluates one
         kernel row per group. Default: every output its own.
+    prior_mean : {"constant", "linear"}
+        ``constant``: the training mean. ``linear``: a first-degree polynomial of the embedded
+        inputs (universal kriging): the hyperparameters are fitted on the residuals of its
+        ordinary least-squares fit, then its coefficients are estimated by generalised least
+        squares with the process's covariance, jointly with the weights. The leave-one-out
+        residuals re-estimate the coefficients without each state (Dubrule 1983). The latent
+        variance (``retransform="predictive"``) is not available with it.
 
     Returns
     -------
@@ -219,6 +244,10 @@ def fit_gp(
 
     if kernel not in GP_KERNELS:
         raise ValueError(f"unknown GP kernel {kernel!r}; expected one of {list(GP_KERNELS)}")
+    if prior_mean not in GP_MEANS:
+        raise ValueError(f"unknown GP prior mean {prior_mean!r}; expected one of {list(GP_MEANS)}")
+    if prior_mean == "linear" and retransform == "predictive":
+        raise ValueError("GP prior mean 'linear' has no latent variance: retransform 'predictive' is not available")
     if retransform not in GP_RETRANSFORMS:
         raise ValueError(f"unknown GP back-transform {retransform!r}; expected one of {list(GP_RETRANSFORMS)}")
     for name, (init, low, high) in (("length_scale", length_scale), ("signal", signal), ("noise", noise)):
@@ -244,12 +273,15 @@ def fit_gp(
     ls0 = np.full(p, length_scale[0]) if kernel == "ard" else length_scale[0]
     ls = np.empty((n_out, p))
     sig, noi, ratio, mean = np.empty(n_out), np.empty(n_out), np.empty(n_out), y.mean(axis=0)
+    h = np.column_stack([np.ones(m), z]) if prior_mean == "linear" else None
+    # the hyperparameters' data: the values, or their residuals from the least-squares linear mean
+    yh = y if h is None else y - h @ np.linalg.lstsq(h, y, rcond=None)[0]
     for cols in _output_groups(groups, n_out):
         k = C(signal[0], signal[1:]) * RBF(ls0, length_scale[1:]) + WhiteKernel(noise[0], noise[1:])
         gpr = GaussianProcessRegressor(k, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", ConvergenceWarning)
-            gpr.fit(z[sub], y[sub, cols[0]] if cols.size == 1 else y[np.ix_(sub, cols)])
+            gpr.fit(z[sub], yh[sub, cols[0]] if cols.size == 1 else yh[np.ix_(sub, cols)])
         for w in caught:
             if issubclass(w.category, ConvergenceWarning):
                 log.info("GP outputs %s: %s", cols.tolist(), str(w.message).splitlines()[0])
@@ -259,7 +291,7 @@ def fit_gp(
         sig[cols] = kf.k1.k1.constant_value * scale2
         noi[cols] = kf.k2.noise_level * scale2
         ratio[cols] = noi[cols[0]] / sig[cols[0]]  # one value per group, so its outputs share B
-    return _condition(space, z, y, ls, sig, noi, ratio, mean, logs, retransform)
+    return _condition(space, z, y, ls, sig, noi, ratio, mean, logs, retransform, h)
 
 
 def _output_groups(groups: npt.ArrayLike | None, n_out: int) -> list[np.ndarray]:
@@ -297,21 +329,27 @@ def _condition(
     mean: np.ndarray,
     logs: np.ndarray,
     retransform: str,
+    h: np.ndarray | None = None,
 ) -> GPModel:
     """Condition every output's process on all training states: weights, Cholesky factors, leave-one-out.
 
     ``B = R + ratio I`` (``R`` the correlation, ``ratio`` the noise over the signal variance) is
-    factored once per distinct ``(length scales, ratio)``: the outputs of a group share it."""
+    factored once per distinct ``(length scales, ratio)``: the outputs of a group share it. With
+    ``h`` (the linear prior mean's basis at the training states) the mean's coefficients are the
+    generalised least-squares estimate ``(h' B^-1 h)^-1 h' B^-1 y`` and the leave-one-out
+    residuals divide by the diagonal of ``B^-1 - B^-1 h (h' B^-1 h)^-1 h' B^-1``."""
     m, n_out = y.shape
     weights = np.empty_like(y)
     loo = np.empty_like(y)
     loo_var = np.empty_like(y)
     chol = np.empty((n_out, m, m))
-    done: dict[bytes, tuple[int, np.ndarray]] = {}  # outputs of one group share B: factor it once
+    mean = mean.copy()
+    slope = None if h is None else np.empty((h.shape[1] - 1, n_out))
+    done: dict[bytes, tuple] = {}  # outputs of one group share B: factor it once
     for j in range(n_out):
         key = ls[j].tobytes() + np.float64(ratio[j]).tobytes()
         if key in done:
-            first, d = done[key]
+            first, d, bih, s_inv = done[key]
             chol[j] = chol[first]
         else:
             b = correlation(z, z, ls[j])
@@ -321,8 +359,18 @@ def _condition(
             if info != 0:
                 raise np.linalg.LinAlgError(f"output {j}: the GP's Cholesky factor is singular (dtrtri info {info})")
             d = np.einsum("ij,ij->j", l_inv, l_inv)  # diag(B^-1) = column sums of squares of L^-1
-            done[key] = (j, d)
-        weights[:, j] = sla.cho_solve((chol[j], True), y[:, j] - mean[j], check_finite=False)
+            bih = s_inv = None
+            if h is not None:  # universal kriging: the mean's GLS normal matrix, and diag of the projected B^-1
+                bih = sla.cho_solve((chol[j], True), h, check_finite=False)
+                s_inv = np.linalg.inv(h.T @ bih)
+                d = d - np.einsum("ik,kl,il->i", bih, s_inv, bih)
+            done[key] = (j, d, bih, s_inv)
+        if h is not None:
+            beta = s_inv @ (bih.T @ y[:, j])
+            mean[j], slope[:, j] = beta[0], beta[1:]
+            weights[:, j] = sla.cho_solve((chol[j], True), y[:, j] - h @ beta, check_finite=False)
+        else:
+            weights[:, j] = sla.cho_solve((chol[j], True), y[:, j] - mean[j], check_finite=False)
         loo[:, j] = weights[:, j] / d
         loo_var[:, j] = sig[j] / d
     factor = np.ones(n_out)
@@ -342,4 +390,5 @@ def _condition(
         loo_var=loo_var,
         log_factor=factor,
         retransform=retransform,
+        slope=slope,
     )

@@ -117,8 +117,12 @@ def predict_latent(
     mean = np.zeros((n, model.n_outputs))
     _mean_rows(z, inv_l, ct, gptr, gcols, np.ascontiguousarray(model.weights.T), mean)
     mean += model.mean
+    if model.slope is not None:
+        mean += z @ model.slope
     var = np.full((n, model.n_outputs), np.nan)
     if want.any():
+        if model.slope is not None:
+            raise ValueError("the latent variance of a GP with a linear prior mean is not available")
         rows = max(1, min(int(chunk_rows), _CACHE_ROWS))
         for j in np.flatnonzero(want):
             for s in range(0, n, rows):

@@ -493,6 +493,7 @@ def _fit_gp(
         subsample=g.subsample,
         retransform=g.retransform,
         groups=gp_groups(cols, g.share),
+        prior_mean=g.mean,
     )
     e = model.loo_error.copy()
     if logs.any():

@@ -43,6 +43,8 @@ class GPSettings:
         Error indicator (:func:`moorlife.lifecycle.error_indicator`).
     share : {"none", "variable", "all"}
         Outputs that share their hyperparameters (:func:`moorlife.gp.fit_gp`'s ``groups``).
+    mean : {"constant", "linear"}
+        The prior mean (:func:`moorlife.gp.fit_gp`'s ``prior_mean``).
     """
 
     kernel: str
@@ -56,6 +58,7 @@ class GPSettings:
     retransform: str
     indicator: str
     share: str
+    mean: str
 
     @classmethod
     def from_section(cls, g: Mapping[str, Any], source: str = "config.yaml") -> GPSettings:
@@ -84,6 +87,7 @@ class GPSettings:
             retransform=str(g["retransform"]),
             indicator=str(g["indicator"]),
             share=str(g["share"]),
+            mean=str(g["mean"]),
         )
 
 
@@ -205,6 +209,12 @@ class RBFSettings:
             )
         if out.method == "gp" and out.choose != "global":
             raise ValueError(f"{source}: lifecycle.rbf.method = 'gp' needs choose = 'global', got {out.choose!r}")
+        g = out.gp
+        if g.mean == "linear" and (g.retransform == "predictive" or g.indicator == "sd"):
+            raise ValueError(
+                f"{source}: lifecycle.rbf.gp.mean = 'linear' has no latent variance, so it cannot go with "
+                f"gp.retransform = {g.retransform!r} and gp.indicator = {g.indicator!r} (use noise or none, and loo)"
+            )
         knots = out.trend_knots
         if any(not b > a for a, b in zip(knots, knots[1:])):
             raise ValueError(f"{source}: lifecycle.rbf.wind_trend.knots = {list(knots)}; expected strictly increasing")
