@@ -174,15 +174,12 @@ def seed_ceiling(records: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The noise ceilings of a validation r, per output, from ``records`` (k >= 2, states, outputs):
     ``sqrt(r1)`` against one record and ``sqrt(k r1 / (1 + (k - 1) r1))`` against their mean, with
     ``r1`` the mean correlation of two records of the same states."""
+    from moorlife import truth
+
     k = records.shape[0]
     pairs = [(a, b) for a in range(k) for b in range(a + 1, k)]
-    r1 = np.mean([_column_r(records[a], records[b]) for a, b in pairs], axis=0)
+    r1 = np.mean([truth.noise_floor(records[a], records[b])["r"] for a, b in pairs], axis=0)
     return np.sqrt(r1), np.sqrt(k * r1 / (1.0 + (k - 1) * r1))
-
-
-def _column_r(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    a, b = a - a.mean(axis=0), b - b.mean(axis=0)
-    return np.sum(a * b, axis=0) / np.sqrt(np.sum(a * a, axis=0) * np.sum(b * b, axis=0))
 
 
 def _schema() -> dict[str, Any]:
@@ -256,11 +253,11 @@ def against_records(lc: xr.Dataset, records: list[xr.Dataset], outputs: Any) -> 
     for rec in records:
         cols = lifecycle.output_columns(rec, names.CASE, outputs)
         y = lifecycle.stack_outputs(rec.sel({names.CASE: ids}), names.CASE, cols)
-        order = [[lifecycle._label(c) for c in cols].index(o) for o in labels]
-        stack.append(y[:, order])
+        column = {lifecycle._label(c): i for i, c in enumerate(cols)}
+        stack.append(y[:, [column[o] for o in labels]])
     y = np.stack(stack)
     c1, ck = seed_ceiling(y)
-    r = _column_r(lc["validation_predicted"].values, y.mean(axis=0))
+    r = lifecycle.validation_metrics(lc["validation_predicted"].values, y.mean(axis=0))["r"]
     return {
         "records_r": pd.Series(r, index=labels),
         "ceiling_one": pd.Series(c1, index=labels),
@@ -310,26 +307,24 @@ def report(res: dict[tuple[str, str], dict[str, Any]], variants: list[str]) -> s
     with_records = {k: m for k, m in res.items() if "records_r" in m}
     if with_records:
         n = next(iter(with_records.values()))["n_records"]
-        lines += ["", f"### Validation r against the mean of {n} records of each state (the ceilings: a perfect", ""]
-        lines[-2] += " reconstruction against one record / against the mean)"
+        title = f"Validation r against the mean of {n} records of each state"
+        lines += ["", f"### {title} (the ceilings: a perfect reconstruction against one record / against the mean)", ""]
         shown = dl + ["accel_mpm"]
         lines += [
             "| system | variant | min r (output) | " + " | ".join(shown) + " |",
             "|---" * (3 + len(shown)) + "|",
         ]
-        for (ms, v), m in with_records.items():
-            r = m["records_r"]
-            lines.append(
-                f"| {ms} | {v} | {r.min():.3f} ({r.idxmin()}) | " + " | ".join(f"{r[o]:.3f}" for o in shown) + " |"
+
+        def row(ms: str, label: str, r: pd.Series) -> str:
+            return (
+                f"| {ms} | {label} | {r.min():.3f} ({r.idxmin()}) | " + " | ".join(f"{r[o]:.3f}" for o in shown) + " |"
             )
+
+        for (ms, v), m in with_records.items():
+            lines.append(row(ms, v, m["records_r"]))
             if v == variants[0]:
-                for key, what in (("ceiling_one", "ceiling, one record"), ("ceiling_mean", f"ceiling, mean of {n}")):
-                    c = m[key]
-                    lines.append(
-                        f"| {ms} | {what} | {c.min():.3f} ({c.idxmin()}) | "
-                        + " | ".join(f"{c[o]:.3f}" for o in shown)
-                        + " |"
-                    )
+                lines.append(row(ms, "ceiling, one record", m["ceiling_one"]))
+                lines.append(row(ms, f"ceiling, mean of {n}", m["ceiling_mean"]))
     with_truth = {k: m for k, m in res.items() if "truth_r" in m}
     if with_truth:
         lines += ["", "### Per-hour r on the truth window (noise floor: r of two seeds)", ""]

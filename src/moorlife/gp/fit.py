@@ -44,9 +44,9 @@ class GPModel:
     """A fitted multi-output Gaussian process (one set of hyperparameters per output; immutable arrays).
 
     The posterior mean of output ``j`` at a point ``x`` (embedded by :func:`chord_embed`) is
-    ``mean_j + x . slope_j + sum_i rho_j(x, c_i) w_ij`` (no slope with a constant prior mean) with ``rho_j(x, c) = exp(-|(x - c) / l_j|^2 / 2)`` the
-    unit-amplitude Gaussian correlation; its latent variance is
-    ``signal_var_j (1 - rho^T B_j^-1 rho)`` with ``B_j = R_j + (noise_var_j / signal_var_j) I``
+    ``mean_j + x . slope_j + sum_i rho_j(x, c_i) w_ij`` (no slope with a constant prior mean), with
+    ``rho_j(x, c) = exp(-|(x - c) / l_j|^2 / 2)`` the unit-amplitude Gaussian correlation; its latent
+    variance is ``signal_var_j (1 - rho^T B_j^-1 rho)`` with ``B_j = R_j + (noise_var_j / signal_var_j) I``
     (``R_j`` the correlation matrix of the training states), whose Cholesky factor is ``chol[j]``.
 
     Attributes
