@@ -719,10 +719,14 @@ GP = {"method": "gp", "outputs": list(lifecycle.DEFAULT_OUTPUTS), "gp": {"subsam
 
 
 @pytest.mark.parametrize(
-    ("share", "mean", "indicator"),
-    [("none", "constant", "sd"), ("variable", "constant", "sd"), ("all", "linear", "loo")],
+    ("share", "mean", "indicator", "covariance"),
+    [
+        ("none", "constant", "sd", "gaussian"),
+        ("variable", "constant", "sd", "matern52"),
+        ("all", "linear", "loo", "matern32"),
+    ],
 )
-def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator):
+def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator, covariance):
     """method: gp: perturbing the validation outputs changes the validation metrics and nothing else."""
     curve = _thrust_curve()
     hc = _hindcast(1500, seed=30)
@@ -732,9 +736,9 @@ def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator)
     sims["damage_sn"] = (("case", "line"), np.outer(y[:, 0], [1.0, 0.5, 2.0]))
     sims["heave_mpm"] = ("case", y[:, 1])
     gp_cfg = {"subsample": 40, "thrust": True, "indicator": indicator, "share": share, "mean": mean}
-    settings = lifecycle.RBFSettings.from_config({**GP, "gp": gp_cfg})
+    settings = lifecycle.RBFSettings.from_config({**GP, "gp": {**gp_cfg, "covariance": covariance}})
     a = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=5, thrust=curve)
-    assert a.attrs["gp_share"] == share and a.attrs["gp_mean"] == mean
+    assert a.attrs["gp_share"] == share and a.attrs["gp_mean"] == mean and a.attrs["gp_covariance"] == covariance
     dmg = [o for o in a["output"].values.astype(object) if o.startswith("damage")]
     same = [
         np.array_equal(a["gp_length_scale"].sel(output=o).values, a["gp_length_scale"].sel(output=dmg[0]).values)

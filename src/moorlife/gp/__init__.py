@@ -3,8 +3,9 @@
 An opt-in alternative to the RBF of :mod:`moorlife.rbf` (``lifecycle.rbf.method: gp``). Each
 output ``y`` (or ``log10 y``) of the simulated sea states is modelled as ``f(x) + e``: ``f`` a
 Gaussian process with a constant mean (the training mean), a squared-exponential covariance
-``s_f^2 exp(-|(x - x') / l|^2 / 2)`` with one length scale per input coordinate (``ard``) or
-one for all (``isotropic``), and ``e`` independent noise of variance ``s_n^2``: the seed noise
+``s_f^2 exp(-|(x - x') / l|^2 / 2)`` or a Matérn one (``covariance``, :mod:`~moorlife.gp.covariance`)
+with one length scale per input coordinate (``ard``) or one for all (``isotropic``), and ``e``
+independent noise of variance ``s_n^2``: the seed noise
 of a one-hour record, which an exact interpolant reproduces.
 
 Inputs
@@ -30,16 +31,19 @@ Back-transform of a ``log10`` output
     constant per output) or ``predictive`` (both terms; ``s^2(x)`` costs a triangular solve per
     point and output, see :mod:`moorlife.gp.predict`).
 
-Modules: :mod:`~moorlife.gp.fit` (embedding, hyperparameters, conditioning, leave-one-out) and
+Modules: :mod:`~moorlife.gp.covariance` (the correlation families),
+:mod:`~moorlife.gp.fit` (embedding, hyperparameters, conditioning, leave-one-out) and
 :mod:`~moorlife.gp.predict` (mean, latent variance, back-transform).
 """
 
 from __future__ import annotations
 
-from moorlife.gp.fit import GP_KERNELS, GP_RETRANSFORMS, GPModel, chord_embed, correlation, embedded_names, fit_gp
+from moorlife.gp.covariance import GP_COVARIANCES, correlation
+from moorlife.gp.fit import GP_KERNELS, GP_RETRANSFORMS, GPModel, chord_embed, embedded_names, fit_gp
 from moorlife.gp.predict import predict_gp, predict_latent
 
 __all__ = [
+    "GP_COVARIANCES",
     "GP_KERNELS",
     "GP_RETRANSFORMS",
     "GPModel",

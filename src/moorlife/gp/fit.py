@@ -11,8 +11,8 @@ import numpy as np
 import numpy.typing as npt
 import scipy.linalg as sla
 
-from moorlife.rbf.kernels import _gaussian_block
-from moorlife.space import Space, as_points, fit_space, sq_dist_block
+from moorlife.gp.covariance import MATERN_NU, correlation, covariance_code
+from moorlife.space import Space, as_points, fit_space
 
 __all__ = [
     "GPModel",
@@ -21,7 +21,6 @@ __all__ = [
     "GP_RETRANSFORMS",
     "chord_embed",
     "embedded_names",
-    "correlation",
     "fit_gp",
 ]
 
@@ -45,7 +44,8 @@ class GPModel:
 
     The posterior mean of output ``j`` at a point ``x`` (embedded by :func:`chord_embed`) is
     ``mean_j + x . slope_j + sum_i rho_j(x, c_i) w_ij`` (no slope with a constant prior mean), with
-    ``rho_j(x, c) = exp(-|(x - c) / l_j|^2 / 2)`` the unit-amplitude Gaussian correlation; its latent
+    ``rho_j`` the unit-amplitude correlation of the model's ``covariance`` (:mod:`moorlife.gp.covariance`,
+    by default the Gaussian ``exp(-|(x - c) / l_j|^2 / 2)``); its latent
     variance is ``signal_var_j (1 - rho^T B_j^-1 rho)`` with ``B_j = R_j + (noise_var_j / signal_var_j) I``
     (``R_j`` the correlation matrix of the training states), whose Cholesky factor is ``chol[j]``.
 
@@ -78,6 +78,8 @@ class GPModel:
         One of :data:`GP_RETRANSFORMS`.
     slope : numpy.ndarray, shape (p, n_out), or None
         The slopes of a linear prior mean along the embedded coordinates (``None``: constant).
+    covariance : str
+        One of :data:`~moorlife.gp.covariance.GP_COVARIANCES`.
     """
 
     space: Space
@@ -94,6 +96,7 @@ class GPModel:
     log_factor: np.ndarray
     retransform: str
     slope: np.ndarray | None = None
+    covariance: str = "gaussian"
 
     @property
     def n_outputs(self) -> int:
@@ -136,29 +139,6 @@ def embedded_names(variables: Sequence[str], is_direction: npt.ArrayLike) -> lis
     return [n for n, d in zip(v, isdir) if not d] + [f"cos_{n}" for n in dirs] + [f"sin_{n}" for n in dirs]
 
 
-def correlation(za: np.ndarray, zb: np.ndarray, length_scale: np.ndarray) -> np.ndarray:
-    """The Gaussian correlation ``exp(-|(a - b) / l|^2 / 2)`` of embedded points (rows of ``za``, ``zb``).
-
-    Parameters
-    ----------
-    za : numpy.ndarray, shape (n, p)
-    zb : numpy.ndarray, shape (m, p)
-    length_scale : numpy.ndarray, shape (p,)
-
-    Returns
-    -------
-    numpy.ndarray, shape (n, m)
-    """
-    inv = 1.0 / np.asarray(length_scale, dtype=float)
-    a = np.ascontiguousarray(za * inv)
-    b_t = np.ascontiguousarray((zb * inv).T)
-    d2 = np.empty((a.shape[0], b_t.shape[1]))
-    sq_dist_block(a, b_t, np.zeros(a.shape[1], dtype=np.bool_), d2)
-    out = np.empty_like(d2)
-    _gaussian_block(d2, 0.5, out, np.empty_like(d2))
-    return out
-
-
 def fit_gp(
     points: npt.ArrayLike,
     values: npt.ArrayLike,
@@ -177,11 +157,13 @@ def fit_gp(
     retransform: str = "noise",
     groups: npt.ArrayLike | None = None,
     prior_mean: str = "constant",
+    covariance: str = "gaussian",
 ) -> GPModel:
     """Fit one Gaussian process with a noise term per output column.
 
     For each output, scikit-learn's :class:`~sklearn.gaussian_process.GaussianProcessRegressor`
-    (``normalize_y=True``, kernel ``C * RBF(l) + WhiteKernel``) maximises the log marginal
+    (``normalize_y=True``, kernel ``C * RBF(l) + WhiteKernel``, or ``Matern(l, nu)`` in place of
+    ``RBF``) maximises the log marginal
     likelihood over the amplitude, the length scales and the noise, on ``subsample`` training
     states (drawn with ``seed``; 0 or ``>= m``: all of them) with ``restarts`` extra starts
     (drawn with ``seed``). With those hyperparameters the process is conditioned on every
@@ -226,6 +208,9 @@ def fit_gp(
         squares with the process's covariance, jointly with the weights. The leave-one-out
         residuals re-estimate the coefficients without each state (Dubrule 1983). The latent
         variance (``retransform="predictive"``) is not available with it.
+    covariance : {"gaussian", "matern52", "matern32"}
+        The correlation family (:mod:`moorlife.gp.covariance`): scikit-learn's ``RBF``, or its
+        ``Matern`` with ``nu`` 2.5 or 1.5.
 
     Returns
     -------
@@ -234,12 +219,12 @@ def fit_gp(
     Raises
     ------
     ValueError
-        On non-finite values, a non-positive value of a ``log10`` output, an unknown kernel or
-        back-transform, or inconsistent bounds.
+        On non-finite values, a non-positive value of a ``log10`` output, an unknown kernel,
+        covariance or back-transform, or inconsistent bounds.
     """
     from sklearn.exceptions import ConvergenceWarning
     from sklearn.gaussian_process import GaussianProcessRegressor
-    from sklearn.gaussian_process.kernels import RBF, WhiteKernel
+    from sklearn.gaussian_process.kernels import RBF, Matern, WhiteKernel
     from sklearn.gaussian_process.kernels import ConstantKernel as C
 
     if kernel not in GP_KERNELS:
@@ -248,6 +233,7 @@ def fit_gp(
         raise ValueError(f"unknown GP prior mean {prior_mean!r}; expected one of {list(GP_MEANS)}")
     if prior_mean == "linear" and retransform == "predictive":
         raise ValueError("GP prior mean 'linear' has no latent variance: retransform 'predictive' is not available")
+    covariance_code(covariance)  # refuses an unknown family
     if retransform not in GP_RETRANSFORMS:
         raise ValueError(f"unknown GP back-transform {retransform!r}; expected one of {list(GP_RETRANSFORMS)}")
     for name, (init, low, high) in (("length_scale", length_scale), ("signal", signal), ("noise", noise)):
@@ -277,7 +263,12 @@ def fit_gp(
     # the hyperparameters' data: the values, or their residuals from the least-squares linear mean
     yh = y if h is None else y - h @ np.linalg.lstsq(h, y, rcond=None)[0]
     for cols in _output_groups(groups, n_out):
-        k = C(signal[0], signal[1:]) * RBF(ls0, length_scale[1:]) + WhiteKernel(noise[0], noise[1:])
+        shape = (
+            RBF(ls0, length_scale[1:])
+            if covariance == "gaussian"
+            else Matern(ls0, length_scale[1:], nu=MATERN_NU[covariance])
+        )
+        k = C(signal[0], signal[1:]) * shape + WhiteKernel(noise[0], noise[1:])
         gpr = GaussianProcessRegressor(k, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", ConvergenceWarning)
@@ -291,7 +282,7 @@ def fit_gp(
         sig[cols] = kf.k1.k1.constant_value * scale2
         noi[cols] = kf.k2.noise_level * scale2
         ratio[cols] = noi[cols[0]] / sig[cols[0]]  # one value per group, so its outputs share B
-    return _condition(space, z, y, ls, sig, noi, ratio, mean, logs, retransform, h)
+    return _condition(space, z, y, ls, sig, noi, ratio, mean, logs, retransform, h, covariance)
 
 
 def _output_groups(groups: npt.ArrayLike | None, n_out: int) -> list[np.ndarray]:
@@ -330,6 +321,7 @@ def _condition(
     logs: np.ndarray,
     retransform: str,
     h: np.ndarray | None = None,
+    covariance: str = "gaussian",
 ) -> GPModel:
     """Condition every output's process on all training states: weights, Cholesky factors, leave-one-out.
 
@@ -352,7 +344,7 @@ def _condition(
             first, d, bih, s_inv = done[key]
             chol[j] = chol[first]
         else:
-            b = correlation(z, z, ls[j])
+            b = correlation(z, z, ls[j], covariance)
             b[np.diag_indices(m)] += ratio[j]
             chol[j] = sla.cholesky(b, lower=True, check_finite=False)
             l_inv, info = sla.lapack.dtrtri(chol[j], lower=1)
@@ -391,4 +383,5 @@ def _condition(
         log_factor=factor,
         retransform=retransform,
         slope=slope,
+        covariance=covariance,
     )

@@ -15,7 +15,8 @@ import numpy as np
 import numpy.typing as npt
 import scipy.linalg as sla
 
-from moorlife.gp.fit import _LN10_SQ, GPModel, chord_embed, correlation
+from moorlife.gp.covariance import correlation, covariance_code, exponent, prefactor
+from moorlife.gp.fit import _LN10_SQ, GPModel, chord_embed
 from moorlife.rbf.kernels import exp_parts
 
 __all__ = ["predict_gp", "predict_latent"]
@@ -35,12 +36,14 @@ def _mean_rows(
     gptr: np.ndarray,
     gcols: np.ndarray,
     w: np.ndarray,
+    code: int,
     out: np.ndarray,
 ) -> None:  # pragma: no cover - numba
-    # out[i, o] += sum_j exp(-|(z_i - c_j) / l_g|^2 / 2) w[o, j] for the outputs o of every length-scale
+    # out[i, o] += sum_j rho(|(z_i - c_j) / l_g|) w[o, j] for the outputs o of every length-scale
     # group g (gcols[gptr[g]:gptr[g + 1]]); ct[g] holds the centres scaled by 1 / l_g, transposed.
     # Fused per row (distance, exp, weighted sums in buffers of m that stay in cache); each row by
-    # one thread in a fixed order. exp(-x) by moorlife.rbf.kernels.exp_parts.
+    # one thread in a fixed order. rho is the family `code` of moorlife.gp.covariance, its exp by
+    # moorlife.rbf.kernels.exp_parts (d2 holds the exponent's argument after the distance).
     n, p = z.shape
     n_g, _, m = ct.shape
     n_blocks = (n + _ROWS - 1) // _ROWS
@@ -59,11 +62,12 @@ def _mean_rows(
                         u = a - ct[g, d, j]
                         d2[j] += u * u
                 for j in range(m):
-                    k[j], tmp[j] = exp_parts(max(-0.5 * d2[j], -708.0))
+                    d2[j] = exponent(d2[j], code)
+                    k[j], tmp[j] = exp_parts(max(d2[j], -708.0))
                 for j in range(m):
                     bits[j] = ((bits[j] & 0xFFFFFFFF) + 1023) << 52
                 for j in range(m):
-                    k[j] = k[j] * tmp[j] if 0.5 * d2[j] <= 708.0 else 0.0
+                    k[j] = k[j] * tmp[j] * prefactor(d2[j], code) if d2[j] >= -708.0 else 0.0
                 for c in range(gptr[g], gptr[g + 1]):
                     o = gcols[c]
                     acc = 0.0
@@ -115,7 +119,8 @@ def predict_latent(
     inv_l = np.ascontiguousarray(1.0 / model.length_scale[heads])
     ct = np.ascontiguousarray(np.stack([(model.centres * il).T for il in inv_l]))
     mean = np.zeros((n, model.n_outputs))
-    _mean_rows(z, inv_l, ct, gptr, gcols, np.ascontiguousarray(model.weights.T), mean)
+    w = np.ascontiguousarray(model.weights.T)
+    _mean_rows(z, inv_l, ct, gptr, gcols, w, covariance_code(model.covariance), mean)
     mean += model.mean
     if model.slope is not None:
         mean += z @ model.slope
@@ -127,7 +132,7 @@ def predict_latent(
         for j in np.flatnonzero(want):
             for s in range(0, n, rows):
                 e = min(n, s + rows)
-                k = correlation(z[s:e], model.centres, model.length_scale[j])
+                k = correlation(z[s:e], model.centres, model.length_scale[j], model.covariance)
                 v = sla.solve_triangular(model.chol[j], k.T, lower=True, check_finite=False)
                 var[s:e, j] = np.maximum(model.signal_var[j] * (1.0 - np.einsum("ij,ij->j", v, v)), 0.0)
     return mean, var

@@ -321,7 +321,7 @@ def reconstruct_lifecycle(
         g = settings.gp
         out.attrs.update({"rbf_method": "gp", "gp_kernel": g.kernel, "gp_retransform": g.retransform})
         out.attrs.update({"gp_subsample": g.subsample, "gp_thrust": int(g.thrust), "gp_indicator": g.indicator})
-        out.attrs.update({"gp_share": g.share, "gp_mean": g.mean})
+        out.attrs.update({"gp_share": g.share, "gp_mean": g.mean, "gp_covariance": g.covariance})
     return out
 
 

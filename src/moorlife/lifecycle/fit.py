@@ -494,6 +494,7 @@ def _fit_gp(
         retransform=g.retransform,
         groups=gp_groups(cols, g.share),
         prior_mean=g.mean,
+        covariance=g.covariance,
     )
     e = model.loo_error.copy()
     if logs.any():

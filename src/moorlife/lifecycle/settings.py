@@ -32,6 +32,8 @@ class GPSettings:
     Attributes
     ----------
     kernel : {"ard", "isotropic"}
+    covariance : {"gaussian", "matern52", "matern32"}
+        The correlation family (:mod:`moorlife.gp.covariance`).
     length_scale, signal, noise : GPBounds
         Start and bounds of each hyperparameter (:func:`moorlife.gp.fit_gp`).
     restarts, seed, subsample : int
@@ -48,6 +50,7 @@ class GPSettings:
     """
 
     kernel: str
+    covariance: str
     length_scale: GPBounds
     signal: GPBounds
     noise: GPBounds
@@ -77,6 +80,7 @@ class GPSettings:
             triples[key] = t
         return cls(
             kernel=str(g["kernel"]),
+            covariance=str(g["covariance"]),
             length_scale=triples["length_scale"],
             signal=triples["signal"],
             noise=triples["noise"],
