@@ -296,6 +296,8 @@ def choice_section(pts, train, valid, y, y_val, labels, lo, span, gp_variants=Fa
                 "gp, subsample 300": {"method": "gp", "gp": {"subsample": 300}},
                 "gp, share variable": {"method": "gp", "gp": {"share": "variable"}},
                 "gp, share all": {"method": "gp", "gp": {"share": "all"}},
+                "gp, matern52": {"method": "gp", "gp": {"covariance": "matern52"}},
+                "gp, matern52, share var.": {"method": "gp", "gp": {"covariance": "matern52", "share": "variable"}},
             }
         )
     table = {}
