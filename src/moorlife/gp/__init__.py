@@ -3,10 +3,10 @@
 An opt-in alternative to the RBF of :mod:`moorlife.rbf` (``lifecycle.rbf.method: gp``). Each
 output ``y`` (or ``log10 y``) of the simulated sea states is modelled as ``f(x) + e``: ``f`` a
 Gaussian process with a constant mean (the training mean), a squared-exponential covariance
-``s_f^2 exp(-|(x - x') / l|^2 / 2)`` or a Matérn one (``covariance``, :mod:`~moorlife.gp.covariance`)
-with one length scale per input coordinate (``ard``) or one for all (``isotropic``), and ``e``
-independent noise of variance ``s_n^2``: the seed noise
-of a one-hour record, which an exact interpolant reproduces.
+``s_f^2 exp(-|(x - x') / l|^2 / 2)`` or a Matérn one (``covariance``,
+:mod:`~moorlife.gp.covariance`) with one length scale per input coordinate (``ard``) or one for
+all (``isotropic``), and ``e`` independent noise of variance ``s_n^2``: the seed noise of a
+one-hour record, which an exact interpolant reproduces.
 
 Inputs
     The paper's normalised space (:mod:`moorlife.space`: each scalar by its range), with each

@@ -10,7 +10,8 @@ Every family is a unit-amplitude correlation of the scaled distance ``r = |(a - 
 The Matérn kernels let a sample path bend faster than the squared exponential at the same length
 scale, as the damage of a lightly loaded line does across rated wind. Every caller (the training
 matrix, the prediction's rows, the latent variance) evaluates the exponential with the same
-:func:`moorlife.rbf.kernels.exp_parts`, so the same points give the same bits.
+:func:`moorlife.rbf.kernels.exp_parts`; the prediction's compiled rows sum the squared distance
+in their own order, so they agree with :func:`correlation` to rounding, not bit for bit.
 """
 
 from __future__ import annotations

@@ -44,10 +44,11 @@ class GPModel:
 
     The posterior mean of output ``j`` at a point ``x`` (embedded by :func:`chord_embed`) is
     ``mean_j + x . slope_j + sum_i rho_j(x, c_i) w_ij`` (no slope with a constant prior mean), with
-    ``rho_j`` the unit-amplitude correlation of the model's ``covariance`` (:mod:`moorlife.gp.covariance`,
-    by default the Gaussian ``exp(-|(x - c) / l_j|^2 / 2)``); its latent
-    variance is ``signal_var_j (1 - rho^T B_j^-1 rho)`` with ``B_j = R_j + (noise_var_j / signal_var_j) I``
-    (``R_j`` the correlation matrix of the training states), whose Cholesky factor is ``chol[j]``.
+    ``rho_j`` the unit-amplitude correlation of the model's ``covariance``
+    (:mod:`moorlife.gp.covariance`; by default the Gaussian ``exp(-|(x - c) / l_j|^2 / 2)``); its
+    latent variance is ``signal_var_j (1 - rho^T B_j^-1 rho)`` with
+    ``B_j = R_j + (noise_var_j / signal_var_j) I`` (``R_j`` the correlation matrix of the training
+    states), whose Cholesky factor is ``chol[j]``.
 
     Attributes
     ----------
@@ -163,10 +164,9 @@ def fit_gp(
 
     For each output, scikit-learn's :class:`~sklearn.gaussian_process.GaussianProcessRegressor`
     (``normalize_y=True``, kernel ``C * RBF(l) + WhiteKernel``, or ``Matern(l, nu)`` in place of
-    ``RBF``) maximises the log marginal
-    likelihood over the amplitude, the length scales and the noise, on ``subsample`` training
-    states (drawn with ``seed``; 0 or ``>= m``: all of them) with ``restarts`` extra starts
-    (drawn with ``seed``). With those hyperparameters the process is conditioned on every
+    ``RBF``) maximises the log marginal likelihood over the amplitude, the length scales and the
+    noise, on ``subsample`` training states (drawn with ``seed``; 0 or ``>= m``: all of them)
+    with ``restarts`` extra starts (drawn with ``seed``). With those hyperparameters the process is conditioned on every
     training state (one Cholesky factorisation per output), which also gives the leave-one-out
     residuals in closed form (Rasmussen & Williams 2006, eq. 5.12):
     ``r_i = [B^-1 (y - mean)]_i / [B^-1]_ii`` with the noise in ``B``.
