@@ -19,7 +19,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from moorlife.rbf.kernels import _gaussian_block, exp_parts
+from moorlife.rbf.kernels import exp_parts
 from moorlife.space import sq_dist_block
 
 __all__ = ["GP_COVARIANCES", "covariance_code", "correlation"]
@@ -65,7 +65,8 @@ def prefactor(arg: float, code: int) -> float:  # pragma: no cover - numba
 
 
 @nb.njit(parallel=True, cache=True)
-def _matern_block(d2: np.ndarray, code: int, out: np.ndarray, tmp: np.ndarray) -> None:  # pragma: no cover - numba
+def _correlation_block(d2: np.ndarray, code: int, out: np.ndarray, tmp: np.ndarray) -> None:  # pragma: no cover - numba
+    # the same operations, for code 0, as moorlife.rbf.kernels._gaussian_block with q0^2 = 2
     n, m = d2.shape
     bits = tmp.view(np.int64)
     for i in nb.prange(n):
@@ -101,8 +102,5 @@ def correlation(za: np.ndarray, zb: np.ndarray, length_scale: np.ndarray, covari
     d2 = np.empty((a.shape[0], b_t.shape[1]))
     sq_dist_block(a, b_t, np.zeros(a.shape[1], dtype=np.bool_), d2)
     out = np.empty_like(d2)
-    if code == 0:
-        _gaussian_block(d2, 0.5, out, np.empty_like(d2))
-    else:
-        _matern_block(d2, code, out, np.empty_like(d2))
+    _correlation_block(d2, code, out, np.empty_like(d2))
     return out

@@ -166,9 +166,9 @@ def fit_gp(
     (``normalize_y=True``, kernel ``C * RBF(l) + WhiteKernel``, or ``Matern(l, nu)`` in place of
     ``RBF``) maximises the log marginal likelihood over the amplitude, the length scales and the
     noise, on ``subsample`` training states (drawn with ``seed``; 0 or ``>= m``: all of them)
-    with ``restarts`` extra starts (drawn with ``seed``). With those hyperparameters the process is conditioned on every
-    training state (one Cholesky factorisation per output), which also gives the leave-one-out
-    residuals in closed form (Rasmussen & Williams 2006, eq. 5.12):
+    with ``restarts`` extra starts (drawn with ``seed``). With those hyperparameters the process
+    is conditioned on every training state (one Cholesky factorisation per output), which also
+    gives the leave-one-out residuals in closed form (Rasmussen & Williams 2006, eq. 5.12):
     ``r_i = [B^-1 (y - mean)]_i / [B^-1]_ii`` with the noise in ``B``.
 
     Parameters
@@ -262,13 +262,13 @@ def fit_gp(
     h = np.column_stack([np.ones(m), z]) if prior_mean == "linear" else None
     # the hyperparameters' data: the values, or their residuals from the least-squares linear mean
     yh = y if h is None else y - h @ np.linalg.lstsq(h, y, rcond=None)[0]
+    shape = (
+        RBF(ls0, length_scale[1:])
+        if covariance == "gaussian"
+        else Matern(ls0, length_scale[1:], nu=MATERN_NU[covariance])
+    )
+    k = C(signal[0], signal[1:]) * shape + WhiteKernel(noise[0], noise[1:])  # cloned by every fit
     for cols in _output_groups(groups, n_out):
-        shape = (
-            RBF(ls0, length_scale[1:])
-            if covariance == "gaussian"
-            else Matern(ls0, length_scale[1:], nu=MATERN_NU[covariance])
-        )
-        k = C(signal[0], signal[1:]) * shape + WhiteKernel(noise[0], noise[1:])
         gpr = GaussianProcessRegressor(k, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", ConvergenceWarning)
