@@ -40,6 +40,10 @@ def test_check_window_counts_hours():
     assert T.check_window("1985-03-01T00:00", "1985-03-01T23:00", 1, 2, hindcast_start=HC0, hindcast_end=HC1) == 24
     assert T.check_window("1985-03-01T00:00", "1985-03-01T23:00", 5, 2, hindcast_start=HC0, hindcast_end=HC1) == 5
     assert T.check_window(HC0, HC1, 1, 200, hindcast_start=HC0, hindcast_end=HC1) == 8760
+    kw = dict(hindcast_start=HC0, hindcast_end=HC1, source="bad.yaml")
+    assert T.check_window(HC0, HC1, 1, 200, second_seed_storm=100, **kw) == 8760
+    with pytest.raises(ValueError, match=r"bad\.yaml: config key 'truth\.second_seed_storm' = 200 is invalid"):
+        T.check_window(HC0, HC1, 1, 200, second_seed_storm=200, **kw)
 
 
 @pytest.mark.parametrize(
@@ -94,6 +98,53 @@ def test_second_seed_subset_even_deterministic():
 
 
 # --------------------------------------------------------------------------- arithmetic, known answers
+
+
+def test_second_seed_subset_storm_stratum():
+    hs = np.array([1.0, 5.0, 2.0, 7.0, 1.5, 7.0, 0.5, 3.0, 1.0, 2.5])
+    # the two largest Hs (7.0 at 3 and 5), then 3 evenly spaced among the other 8 hours
+    # (positions 0, 4, 7 of [0, 1, 2, 4, 6, 7, 8, 9])
+    assert T.second_seed_subset(10, 5, hs=hs, storm=2).tolist() == [0, 3, 5, 6, 9]
+    # ties at the stratum's edge go to the earlier hour; storm = 0 is the evenly spaced subset
+    assert T.second_seed_subset(10, 5, hs=hs, storm=3).tolist() == [0, 1, 3, 5, 9]
+    assert np.array_equal(T.second_seed_subset(10, 5, hs=hs, storm=0), T.second_seed_subset(10, 5))
+    w = T.strata_weights(10, [0, 3, 5, 6, 9], hs=hs, storm=2)
+    np.testing.assert_allclose(w, [8 / 3, 1.0, 1.0, 8 / 3, 8 / 3])
+    assert w.sum() == pytest.approx(10.0)
+    with pytest.raises(ValueError, match=r"'truth\.second_seed_storm' = 5 must be between 0 and"):
+        T.second_seed_subset(10, 5, hs=hs, storm=5)
+    with pytest.raises(ValueError, match="needs the Hs of the 10 truth hours"):
+        T.second_seed_subset(10, 5, storm=2)
+    with pytest.raises(ValueError, match=r"not the subset of truth\.n_second_seed = 5, truth\.second_seed_storm = 2"):
+        T.strata_weights(10, T.second_seed_subset(10, 5), hs=hs, storm=2)
+
+
+def test_stratified_noise_floor_finds_the_ceiling_an_even_subset_misses():
+    """A window of calm hours and one 40-hour storm that holds the seed noise: the weighted
+    storm stratum estimates the window's ceiling of the per-hour r; the evenly spaced subset,
+    with two storm hours, does not."""
+    err_even, err_strat = [], []
+    for seed in range(8):
+        rng = np.random.default_rng(seed)
+        n = 4000
+        hs = rng.uniform(0.5, 3.0, n)
+        hs[1000:1040] = 8.0 + rng.uniform(0.0, 1.0, 40)
+        s = np.where(hs > 5, 100 + 10 * (hs - 8), 1 + hs)
+        sd = np.where(hs > 5, 15.0, 0.1)
+        x1, x2 = s + sd * rng.normal(size=n), s + sd * rng.normal(size=n)
+        expected = np.sqrt(1 - np.mean(sd**2) / x1.var())  # 1 - E var(e) / var(x)
+        ev = T.second_seed_subset(n, 200)
+        even = T.noise_floor(x1[ev, None], x2[ev, None], n_window=n, window=x1[:, None])
+        st = T.second_seed_subset(n, 200, hs=hs, storm=40)
+        w = T.strata_weights(n, st, hs=hs, storm=40)
+        strat = T.noise_floor(x1[st, None], x2[st, None], n_window=n, window=x1[:, None], weights=w)
+        err_even.append(abs(even["r_ceiling"][0] - expected))
+        err_strat.append(abs(strat["r_ceiling"][0] - expected))
+        assert strat["r"][0] == pytest.approx(strat["r_ceiling"][0] ** 2)
+    assert max(err_strat) < 0.004
+    assert np.mean(err_even) > 2 * np.mean(err_strat)
+    with pytest.raises(ValueError, match="needs the window"):
+        T.noise_floor(x1[st, None], x2[st, None], weights=w)
 
 
 def test_hourly_agreement_known_answers():
@@ -294,6 +345,15 @@ def test_compare_window_known_answers():
     bad["hs"][:] = 99.0
     with pytest.raises(ValueError, match="disagree on hs"):
         T.compare_window(truth, bad, states, sims, outputs=["surge_mpm"])
+    # a second seed with a storm stratum: weighted, named in the attributes; another subset is refused
+    pick = T.second_seed_subset(40, 6, hs=truth["hs"].values, storm=2)
+    st = T.compare_window(
+        truth, rec, states, sims, outputs=["damage_sn"], seed2=truth.isel(case=pick), second_seed_storm=2
+    )
+    assert st.attrs["second_seed_storm"] == 2 and "2 storm hours" in st["noise_r"].attrs["long_name"]
+    np.testing.assert_allclose(st["ceiling_r"].values, 1.0)
+    with pytest.raises(ValueError, match=r"truth\.second_seed_storm = 2: rebuild it"):
+        T.compare_window(truth, rec, states, sims, outputs=["damage_sn"], seed2=seed2, second_seed_storm=2)
 
 
 # --------------------------------------------------------------------------- the workflow, tiny config

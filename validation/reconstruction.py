@@ -224,6 +224,7 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
             stores["discrete_sims"],
             outputs=list(settings.outputs),
             seed2=stores.get("seed2"),
+            second_seed_storm=cfg["truth"]["second_seed_storm"],
         )
         out["truth_r"] = pd.Series(cmp["r"].values, index=cmp["output"].values.astype(object).astype(str))
         for k in ("noise_r", "ceiling_r"):  # from the second seed (truth_seed2.zarr), when it exists

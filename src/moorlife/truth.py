@@ -37,6 +37,7 @@ __all__ = [
     "check_window",
     "window_indices",
     "second_seed_subset",
+    "strata_weights",
     "hourly_agreement",
     "hour_bins",
     "bin_damage_per_hour",
@@ -74,6 +75,7 @@ def check_window(
     hindcast_start: object,
     hindcast_end: object,
     source: str = "config",
+    second_seed_storm: int = 0,
 ) -> int:
     """Check the ``truth`` keys against the study period; return the number of truth hours.
 
@@ -85,6 +87,8 @@ def check_window(
         ``truth.stride``: every ``stride``-th hour of the window is simulated.
     n_second_seed : int
         ``truth.n_second_seed``: hours simulated with a second seed.
+    second_seed_storm : int
+        ``truth.second_seed_storm``: how many of them are the storm stratum (below ``n_second_seed``).
     hindcast_start, hindcast_end : str
         ``hindcast.start`` / ``hindcast.end``, the hourly study period.
     source : str
@@ -99,8 +103,8 @@ def check_window(
     ------
     ValueError
         Naming the key and its value: a window outside the hindcast, an empty window (end
-        before start, or no whole hour inside), a stride below 1, or more second-seed hours
-        than truth hours.
+        before start, or no whole hour inside), a stride below 1, more second-seed hours
+        than truth hours, or a storm stratum not below the second-seed hours.
     """
     if isinstance(stride, bool) or int(stride) != stride or int(stride) < 1:
         raise ValueError(f"{source}: config key 'truth.stride' = {stride!r} is invalid: it must be an integer >= 1")
@@ -130,6 +134,12 @@ def check_window(
         raise ValueError(
             f"{source}: config key 'truth.n_second_seed' = {n_second_seed!r} is larger than the "
             f"{n} hours of the truth window"
+        )
+    storm = second_seed_storm
+    if isinstance(storm, bool) or int(storm) != storm or not 0 <= int(storm) < n2:
+        raise ValueError(
+            f"{source}: config key 'truth.second_seed_storm' = {storm!r} is invalid: it must be an integer "
+            f"from 0 to truth.n_second_seed - 1 = {n2 - 1}"
         )
     return n
 
@@ -169,24 +179,68 @@ def window_indices(
     return inside[:: int(stride)].astype(np.int64)
 
 
-def second_seed_subset(n: int, k: int) -> np.ndarray:
-    """``k`` evenly spaced positions in ``range(n)``, first and last included.
+def second_seed_subset(n: int, k: int, *, hs: npt.ArrayLike | None = None, storm: int = 0) -> np.ndarray:
+    """Positions in ``range(n)`` of the second-seed hours: ``k`` evenly spaced, or a storm stratum
+    and evenly spaced calm hours.
 
-    Position ``i`` is ``round(i (n - 1) / (k - 1))`` in exact integer arithmetic (halves up),
-    so the subset depends only on ``n`` and ``k``.
+    With ``storm = 0``: position ``i`` is ``round(i (n - 1) / (k - 1))`` in exact integer
+    arithmetic (halves up), first and last included, so the subset depends only on ``n`` and ``k``.
+    With ``storm > 0``: the ``storm`` hours of largest ``hs`` (ties: the earlier hour), plus
+    ``k - storm`` evenly spaced (the rule above) among the other ``n - storm`` hours; sorted.
+    A damage sum's seed variance sits in the storm hours, which an evenly spaced subset rarely
+    holds (``validation/reconstruction.md`` section 16); :func:`strata_weights` gives the
+    window hours each subset hour stands for.
 
     Raises
     ------
     ValueError
-        If ``k`` is not in ``1..n``.
+        If ``k`` is not in ``1..n``, ``storm`` not in ``0..k - 1``, or ``hs`` is missing or not
+        of length ``n`` when ``storm > 0``.
     """
-    n, k = int(n), int(k)
+    n, k, storm = int(n), int(k), int(storm)
     if not 1 <= k <= n:
         raise ValueError(f"config key 'truth.n_second_seed' = {k} must be between 1 and the {n} truth hours")
-    if k == 1:
-        return np.zeros(1, dtype=np.int64)
-    i = np.arange(k, dtype=np.int64)
-    return (2 * i * (n - 1) + (k - 1)) // (2 * (k - 1))
+    if not 0 <= storm < k:
+        raise ValueError(
+            f"config key 'truth.second_seed_storm' = {storm} must be between 0 and truth.n_second_seed - 1 = {k - 1}"
+        )
+    if storm == 0:
+        if k == 1:
+            return np.zeros(1, dtype=np.int64)
+        i = np.arange(k, dtype=np.int64)
+        return (2 * i * (n - 1) + (k - 1)) // (2 * (k - 1))
+    h = None if hs is None else np.asarray(hs, dtype=float).reshape(-1)
+    if h is None or h.size != n:
+        raise ValueError(f"the storm stratum of the second seed needs the Hs of the {n} truth hours")
+    top = np.sort(np.argsort(-h, kind="stable")[:storm])
+    rest = np.setdiff1d(np.arange(n, dtype=np.int64), top)
+    return np.sort(np.concatenate([top, rest[second_seed_subset(rest.size, k - storm)]])).astype(np.int64)
+
+
+def strata_weights(n: int, pick: npt.ArrayLike, *, hs: npt.ArrayLike, storm: int) -> np.ndarray:
+    """The window hours each second-seed hour stands for: 1 for a storm hour, ``(n - storm) /
+    (k - storm)`` for a calm one (``pick`` from :func:`second_seed_subset` with the same ``hs`` and
+    ``storm``; all equal to ``n / k`` with ``storm = 0``). They sum to ``n``.
+
+    Raises
+    ------
+    ValueError
+        If ``pick`` is not the subset :func:`second_seed_subset` draws with these settings (the
+        second seed was drawn with another ``truth.second_seed_storm`` or ``truth.n_second_seed``).
+    """
+    pick = np.asarray(pick, dtype=np.int64)
+    k = pick.size
+    want = second_seed_subset(n, k, hs=hs, storm=storm)
+    if not np.array_equal(np.sort(pick), want):
+        raise ValueError(
+            f"truth_seed2.zarr's {k} hours are not the subset of truth.n_second_seed = {k}, "
+            f"truth.second_seed_storm = {storm}: rebuild it (results/truth/hours_seed2.zarr and results/{{ms}}/truth_seed2.zarr)"
+        )
+    w = np.full(k, (n - storm) / (k - storm))
+    if storm:
+        top = np.argsort(-np.asarray(hs, dtype=float).reshape(-1), kind="stable")[:storm]
+        w[np.isin(pick, top)] = 1.0
+    return w
 
 
 def hourly_agreement(truth: npt.ArrayLike, reconstruction: npt.ArrayLike) -> dict[str, np.ndarray]:
@@ -316,6 +370,7 @@ def noise_floor(
     seed2: npt.ArrayLike,
     n_window: int | None = None,
     window: npt.ArrayLike | None = None,
+    weights: npt.ArrayLike | None = None,
 ) -> dict[str, np.ndarray]:
     """The noise floor of one realisation per hour, from two seeds of the same hours.
 
@@ -328,6 +383,9 @@ def noise_floor(
     window : array_like, shape (n_window, k), optional
         The truth of every window hour. With it the seed scatter of the window's sum follows
         the window's own values (below); without it, the subset's mean variance.
+    weights : array_like, shape (m,), optional
+        The window hours each subset hour stands for (:func:`strata_weights`), for a stratified
+        subset; needs ``window``. Then ``r`` and the ceiling are the window's (below).
 
     Returns
     -------
@@ -356,12 +414,21 @@ def noise_floor(
     x2)^2 / 2) / sum(((x1 + x2) / 2)^2)`` over the subset (each hour weighted by its size, as
     it weighs in a sum), and ``sum_std_pct = 100 c sqrt(sum_h x_h^2) / sum_h x_h`` over the
     window's truth ``x_h``.
+
+    With ``weights`` ``w_i`` (a subset with a storm stratum): the window's mean seed variance is
+    ``v = sum w (x1 - x2)^2 / 2 / sum w``, the two-seed correlation the window would show is
+    ``r = 1 - v / var(x_h)`` (``var`` over the window's truth), the ceiling ``sqrt(r)``, and ``c^2``
+    weights both of its sums by ``w``. An evenly spaced subset gives the ceiling of its own,
+    mostly calm, hours; on MS6's year 1985 that read 0.999 where four records of every storm
+    hour give 0.971.
     """
     a = np.atleast_2d(np.asarray(seed1, dtype=float).T).T
     b = np.atleast_2d(np.asarray(seed2, dtype=float).T).T
     if a.shape != b.shape:
         raise ValueError(f"seed1 {a.shape} and seed2 {b.shape} differ in shape")
     n = a.shape[0] if n_window is None else int(n_window)
+    if weights is not None:
+        return _stratified_floor(a, b, window, weights)
     r = lifecycle.validation_metrics(b, a)["r"]
     with np.errstate(divide="ignore", invalid="ignore"):
         if window is None:
@@ -378,6 +445,30 @@ def noise_floor(
     return {
         "r": r,
         "r_ceiling": ceiling,
+        "sum_difference_pct": signed_error_pct(b.sum(axis=0), a.sum(axis=0)),
+        "sum_std_pct": std_pct,
+    }
+
+
+def _stratified_floor(
+    a: np.ndarray, b: np.ndarray, window: npt.ArrayLike | None, weights: npt.ArrayLike
+) -> dict[str, np.ndarray]:
+    """:func:`noise_floor` of a weighted (stratified) subset."""
+    if window is None:
+        raise ValueError("a weighted noise floor needs the window's truth (window=)")
+    w = np.asarray(weights, dtype=float).reshape(-1, 1)
+    x = np.atleast_2d(np.asarray(window, dtype=float).T).T
+    if w.shape[0] != a.shape[0] or x.shape[1] != a.shape[1]:
+        raise ValueError(f"weights {w.shape[0]}, window {x.shape} and seeds {a.shape} do not match")
+    nv = 0.5 * (a - b) ** 2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        v = np.sum(w * nv, axis=0) / np.sum(w)
+        r = 1.0 - v / x.var(axis=0)
+        c2 = np.sum(w * nv, axis=0) / np.sum(w * (0.5 * (a + b)) ** 2, axis=0)
+        std_pct = 100.0 * np.sqrt(c2 * np.sum(x * x, axis=0)) / np.sum(x, axis=0)
+    return {
+        "r": r,
+        "r_ceiling": np.sqrt(np.clip(r, 0.0, 1.0)),
         "sum_difference_pct": signed_error_pct(b.sum(axis=0), a.sum(axis=0)),
         "sum_std_pct": std_pct,
     }
@@ -424,6 +515,7 @@ def compare_window(
     *,
     outputs: Sequence[str],
     seed2: xr.Dataset | None = None,
+    second_seed_storm: int = 0,
 ) -> xr.Dataset:
     """Compare the reconstruction with the simulated truth on the window.
 
@@ -439,6 +531,9 @@ def compare_window(
         The outputs compared (``lifecycle.rbf.outputs``); those missing from either store are skipped.
     seed2 : xarray.Dataset, optional
         ``results/{ms}/truth_seed2.zarr``: a subset of the hours with a second seed.
+    second_seed_storm : int
+        ``truth.second_seed_storm``: the subset's storm stratum (:func:`second_seed_subset`);
+        with it the noise floor is weighted by :func:`strata_weights` and is the window's.
 
     Returns
     -------
@@ -491,9 +586,16 @@ def compare_window(
         if np.any(pos >= idx.size) or np.any(idx[np.minimum(pos, idx.size - 1)] != seed2["hindcast_index"].values):
             raise ValueError("truth_seed2.zarr holds hours that are not truth hours")
         y2 = lifecycle.stack_outputs(seed2, c, cols)
-        noise = noise_floor(y_true[pos], y2, n_window=idx.size, window=y_true)
+        storm = int(second_seed_storm)
+        w = strata_weights(idx.size, pos, hs=truth["hs"].values, storm=storm) if storm else None
+        noise = noise_floor(y_true[pos], y2, n_window=idx.size, window=y_true, weights=w)
         out = out.assign_coords(seed2_hour=("seed2_hour", idx[pos]))
-        out["noise_r"] = ("output", noise["r"], _a(f"r of two seeds on {pos.size} hours"))
+        how = (
+            f"{storm} storm hours (largest Hs) and {pos.size - storm} evenly spaced, weighted"
+            if storm
+            else "evenly spaced"
+        )
+        out["noise_r"] = ("output", noise["r"], _a(f"r of two seeds on {pos.size} hours ({how})"))
         out["ceiling_r"] = (
             "output",
             noise["r_ceiling"],
@@ -566,6 +668,7 @@ def compare_window(
         {
             "n_hours": int(idx.size),
             "n_seed2": int(0 if noise is None else out.sizes["seed2_hour"]),
+            "second_seed_storm": int(second_seed_storm) if noise is not None else 0,
             "mooring_system": str(truth.attrs.get("mooring_system", "")),
             "random_stream": str(truth.attrs.get("random_stream", "")),
         }

@@ -33,6 +33,7 @@ rule truth_hours_seed2:
         "../../envs/moorlife.yaml"
     params:
         n=config["truth"]["n_second_seed"],
+        storm=config["truth"]["second_seed_storm"],
     script:
         "../scripts/truth_hours_seed2.py"
 
@@ -95,5 +96,6 @@ rule truth_compare:
         mem_mb=2000,
     params:
         outputs=config["lifecycle"]["rbf"]["outputs"],
+        second_seed_storm=config["truth"]["second_seed_storm"],
     script:
         "../scripts/truth_compare.py"

@@ -6,17 +6,9 @@ from moorlife.stages.truth import run
 
 def main(smk) -> None:
     with log_to(smk.log[0]):
-        i = smk.input
-        run(
-            i.truth,
-            i.seed2,
-            i.lifecycle,
-            i.states,
-            i.discrete,
-            dict(smk.output.items()),
-            compared=smk.params.outputs,
-            mooring_system=smk.wildcards.ms,
-        )
+        i, p = smk.input, smk.params
+        kw = dict(compared=p.outputs, mooring_system=smk.wildcards.ms, second_seed_storm=p.second_seed_storm)
+        run(i.truth, i.seed2, i.lifecycle, i.states, i.discrete, dict(smk.output.items()), **kw)
 
 
 if __name__ == "__main__":

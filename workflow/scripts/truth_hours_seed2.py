@@ -6,7 +6,7 @@ from moorlife.stages.truth import seed2_store
 
 def main(smk) -> None:
     with log_to(smk.log[0]):
-        seed2_store(smk.input[0], smk.output[0], n=smk.params.n)
+        seed2_store(smk.input[0], smk.output[0], n=smk.params.n, storm=smk.params.storm)
 
 
 if __name__ == "__main__":

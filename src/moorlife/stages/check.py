@@ -111,6 +111,7 @@ def check_truth(config: Mapping[str, Any], source: str = "config") -> int:
         hindcast_start=h["start"],
         hindcast_end=h["end"],
         source=source,
+        second_seed_storm=t["second_seed_storm"],
     )
 
 

@@ -5,8 +5,8 @@ Rules (``workflow/rules/truth.smk``), opt-in, outside ``rule all``:
 * ``truth_hours``: ``results/metocean/hindcast.zarr`` -> ``results/truth/hours.zarr``, the
   window's sea states as a cases-like store (dim ``case`` = the hour's ``hindcast_index``, so
   the hour keeps its random stream whatever the window), :func:`hours_store`;
-* ``truth_hours_seed2``: an evenly spaced subset of ``truth.n_second_seed`` of them,
-  :func:`seed2_store`;
+* ``truth_hours_seed2``: ``truth.n_second_seed`` of them, evenly spaced or with a storm stratum
+  of ``truth.second_seed_storm`` hours, :func:`seed2_store`;
 * ``truth_simulate`` / ``truth_simulate_seed2``: the simulate stage as it is
   (``use rule simulate_cases``, :func:`moorlife.stages.simulate.run`) on those stores, streams
   ``"truth"`` and ``"truth_seed2"``;
@@ -70,12 +70,15 @@ def hours_store(hindcast: PathLike, output: PathLike, *, start: str, end: str, s
     return ds
 
 
-def seed2_store(hours: PathLike, output: PathLike, *, n: int) -> xr.Dataset:
-    """``results/truth/hours_seed2.zarr``: ``n`` evenly spaced hours of ``hours.zarr``."""
+def seed2_store(hours: PathLike, output: PathLike, *, n: int, storm: int = 0) -> xr.Dataset:
+    """``results/truth/hours_seed2.zarr``: ``n`` hours of ``hours.zarr``, evenly spaced, or the
+    ``storm`` hours of largest Hs and ``n - storm`` evenly spaced (:func:`moorlife.truth.second_seed_subset`)."""
     ds = open_zarr(hours)
-    pick = kernels.second_seed_subset(ds.sizes[names.CASE], int(n))
+    pick = kernels.second_seed_subset(ds.sizes[names.CASE], int(n), hs=ds["hs"].values, storm=int(storm))
     sub = ds.isel({names.CASE: pick})
-    sub.attrs["description"] = f"{int(n)} evenly spaced truth hours simulated with a second seed (the noise floor)"
+    how = f"the {int(storm)} of largest Hs and {int(n) - int(storm)} evenly spaced" if storm else "evenly spaced"
+    sub.attrs["description"] = f"{int(n)} truth hours ({how}) simulated with a second seed (the noise floor)"
+    sub.attrs["second_seed_storm"] = int(storm)
     write_zarr(sub, output)
     return sub
 
@@ -116,11 +119,13 @@ def run(
     *,
     compared: Sequence[str],
     mooring_system: str,
+    second_seed_storm: int = 0,
 ) -> xr.Dataset:
     """Compare ``lifecycle.zarr`` with the truth; write the store, the CSV and the figures.
 
     ``outputs`` maps ``store``, ``csv``, ``scatter`` and ``cumulative`` to their paths;
-    ``compared`` lists the outputs (``lifecycle.rbf.outputs``).
+    ``compared`` lists the outputs (``lifecycle.rbf.outputs``); ``second_seed_storm`` is
+    ``truth.second_seed_storm``, the second seed's storm stratum.
     """
     from moorlife.plots import truth as plots
 
@@ -135,6 +140,7 @@ def run(
         open_zarr(discrete_sims),
         outputs=list(compared),
         seed2=open_zarr(truth_seed2) if truth_seed2 else None,
+        second_seed_storm=second_seed_storm,
     )
     table = comparison_table(cmp)
     log.info("truth comparison of %s on %d hours:\n%s", mooring_system, cmp.attrs["n_hours"], table.to_string())
