@@ -23,7 +23,12 @@ With the truth, four records per storm hour.
   reconstructed damage over the mean of the four records.
 
 The hours of the evenly spaced subset that fall in the storm set are simulated again with
-``truth_seed2``: they must give the bits of ``truth_seed2.zarr`` (checked, printed).
+``truth_seed2``: they must give the bits of ``truth_seed2.zarr`` (checked, printed). The ceiling
+rows also give the window sum's seed sd from the same stratified variance.
+
+With ``--second-seed-storm K``, the truth target's own second seed with a storm stratum of K
+hours (``truth.second_seed_storm``, the same number of hours as ``truth_seed2.zarr``) is
+simulated too, and its ceiling and sum's seed sd are printed beside the evenly spaced one's.
 """
 
 from __future__ import annotations
@@ -100,13 +105,14 @@ def measure(ms: str, stores: dict, pick: np.ndarray, extra: list, variants: dict
     n, n_storm = x.shape[0], spos.size
     noise = (nv_storm.sum(axis=0) + (n - n_storm) * nv_calm) / n
     ceiling = np.sqrt(np.clip(1.0 - noise / x.var(axis=0), 0.0, 1.0))
+    sum_sd = 100.0 * np.sqrt(noise * n) / x.sum(axis=0)  # the window sum's seed sd, % (stratified)
     subset = np.sqrt(np.clip([np.corrcoef(x[p2, j], x2[:, j])[0, 1] for j in range(len(lines))], 0.0, 1.0))
     rows = []
     for j, ln in enumerate(lines):
         share = nv_storm[:, j].sum() / (noise[j] * n)
         rows.append(
             f"| {ms} | {ln} | ceiling | {subset[j]:.4f} (subset) / **{ceiling[j]:.4f}** (stratified) | "
-            f"| storm noise {100 * share:.0f} % of the window's | | |"
+            f"| storm noise {100 * share:.0f} % of the window's; the sum's seed sd {sum_sd[j]:.2f} % | | |"
         )
     for name, overlays in variants.items():
         cfg = rec.study(overlays)
@@ -140,6 +146,46 @@ def measure(ms: str, stores: dict, pick: np.ndarray, extra: list, variants: dict
     return rows
 
 
+def target_floor(cfg: dict, ms: str, results: Path, work: Path, stores: dict, storm: int) -> str:
+    """The truth target's noise floor of the S-N damage, evenly spaced (``truth_seed2.zarr``) and
+    with a storm stratum of ``storm`` hours (``truth.second_seed_storm``; its second seed
+    simulated into ``work``): ceiling of the per-hour r and the window sum's seed sd, per line."""
+    from moorlife import truth as kernels
+    from moorlife.io import write_zarr
+
+    truth, seed2 = stores["truth"], stores["seed2"]
+    idx, hs = truth["hindcast_index"].values, truth["hs"].values
+    n, k = idx.size, seed2.sizes["case"]
+    pick = kernels.second_seed_subset(n, k, hs=hs, storm=storm)
+    cases, store = work / "stratified_cases.zarr", work / "stratified_seed2.zarr"
+    if not cases.exists():
+        write_zarr(rec._open(results / "truth" / "hours.zarr").isel(case=pick), cases)
+    if not store.exists():
+        rec.simulate_cases(cfg, ms, results, cases, store, stream="truth_seed2", threads=2, log=work / "stratified.log")
+    x = truth["damage_sn"].transpose("case", "line").values
+    even = kernels.noise_floor(
+        x[np.searchsorted(idx, seed2["hindcast_index"].values)],
+        seed2["damage_sn"].transpose("case", "line").values,
+        n_window=n,
+        window=x,
+    )
+    strat = kernels.noise_floor(
+        x[pick],
+        rec._open(store)["damage_sn"].transpose("case", "line").values,
+        n_window=n,
+        window=x,
+        weights=kernels.strata_weights(n, pick, hs=hs, storm=storm),
+    )
+
+    def f(v, d):
+        return " / ".join(f"{u:.{d}f}" for u in v)
+
+    return (
+        f"| {ms} | {f(even['r_ceiling'], 3)} | {f(strat['r_ceiling'], 3)} | "
+        f"{f(even['sum_std_pct'], 2)} | {f(strat['sum_std_pct'], 2)} |"
+    )
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--results", type=Path, default=rec.ROOT / "results")
@@ -147,6 +193,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--hs", type=float, default=5.0, help="storm hours: Hs >= this (m)")
     ap.add_argument("--variant", action="append", default=[], help="NAME=OVERLAY[,OVERLAY...] (empty: config.yaml)")
     ap.add_argument("--work", type=Path, default=rec.ROOT / "results" / "storm_noise")
+    ap.add_argument(
+        "--second-seed-storm",
+        type=int,
+        default=0,
+        help="also the truth target's noise floor with this storm stratum (truth.second_seed_storm)",
+    )
     a = ap.parse_args(argv)
     variants = {v.split("=", 1)[0]: [o for o in v.split("=", 1)[1].split(",") if o] for v in a.variant}
     base = rec.study([])
@@ -162,6 +214,14 @@ def main(argv: list[str] | None = None) -> int:
         "| storm share of squared error | storm error / storm noise | storm sum / 4-record mean |",
         "|---|---|---|---|---|---|---|---|",
     ]
+    target = [
+        "",
+        f"The truth target's noise floor of the S-N damage (M1 / M2 / M3): 'even' is truth_seed2.zarr, "
+        f"'stratified' truth.second_seed_storm = {a.second_seed_storm} of the same number of hours.",
+        "",
+        "| system | ceiling, even | ceiling, stratified | sum's seed sd %, even | sum's seed sd %, stratified |",
+        "|---|---|---|---|---|",
+    ]
     for ms in a.systems:
         stores = rec.load(a.results, ms)
         if stores is None or stores.get("truth") is None or stores.get("seed2") is None:
@@ -169,8 +229,10 @@ def main(argv: list[str] | None = None) -> int:
             continue
         pick, extra = records(base, ms, a.results, a.work / ms, stores, a.hs)
         out += measure(ms, stores, pick, extra, variants, a.hs)
+        if a.second_seed_storm:
+            target.append(target_floor(base, ms, a.results, a.work / ms, stores, a.second_seed_storm))
         print(f"{ms}: done", file=sys.stderr, flush=True)
-    print("\n".join(out))
+    print("\n".join(out + (target if a.second_seed_storm else [])))
     return 0
 
 
