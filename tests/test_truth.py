@@ -452,6 +452,29 @@ def test_truth_window_end_to_end(truth_study):
 
 
 @pytest.mark.workflow
+def test_truth_second_seed_storm_end_to_end(truth_study, tmp_path):
+    """truth.second_seed_storm: the second seed holds the hours of largest Hs, the comparison is
+    weighted and says so, and the hours shared with the evenly spaced subset keep their bits."""
+    work = tmp_path / "s"
+    shutil.copytree(truth_study, work, symlinks=True)
+    (work / "storm.yaml").write_text("truth:\n  second_seed_storm: 3\n")
+    smk(work, TARGET, overlays=_ov("storm.yaml"))
+    tr = mio.open_zarr(work / "results/MS1/truth.zarr")
+    s2 = mio.open_zarr(work / "results/MS1/truth_seed2.zarr")
+    pick = T.second_seed_subset(N_HOURS, 8, hs=tr["hs"].values, storm=3)
+    np.testing.assert_array_equal(s2["hindcast_index"].values, tr["hindcast_index"].values[pick])
+    top = np.argsort(-tr["hs"].values, kind="stable")[:3]
+    assert set(top) <= set(pick.tolist())
+    cmp = mio.open_zarr(work / TARGET)
+    assert cmp.attrs["second_seed_storm"] == 3 and "3 storm hours" in cmp["noise_r"].attrs["long_name"]
+    assert np.all(np.isfinite(cmp["ceiling_r"].values)) and np.all(np.isfinite(cmp["seed_sum_std_pct"].values))
+    even = mio.open_zarr(truth_study / "results/MS1/truth_seed2.zarr")
+    both = np.intersect1d(s2["hindcast_index"].values, even["hindcast_index"].values)
+    assert both.size > 0
+    np.testing.assert_array_equal(s2["damage_sn"].sel(case=both).values, even["damage_sn"].sel(case=both).values)
+
+
+@pytest.mark.workflow
 def test_truth_figures_in_the_report(truth_study, tmp_path):
     report = tmp_path / "report.html"
     smk(truth_study, "--report", str(report), TARGET, overlays=_ov())
