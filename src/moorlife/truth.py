@@ -209,12 +209,17 @@ def second_seed_subset(n: int, k: int, *, hs: npt.ArrayLike | None = None, storm
             return np.zeros(1, dtype=np.int64)
         i = np.arange(k, dtype=np.int64)
         return (2 * i * (n - 1) + (k - 1)) // (2 * (k - 1))
+    top = _storm_hours(n, hs, storm)
+    rest = np.setdiff1d(np.arange(n, dtype=np.int64), top)
+    return np.sort(np.concatenate([top, rest[second_seed_subset(rest.size, k - storm)]])).astype(np.int64)
+
+
+def _storm_hours(n: int, hs: npt.ArrayLike | None, storm: int) -> np.ndarray:
+    """The ``storm`` positions of largest ``hs`` (ties: the earlier hour), sorted."""
     h = None if hs is None else np.asarray(hs, dtype=float).reshape(-1)
     if h is None or h.size != n:
         raise ValueError(f"the storm stratum of the second seed needs the Hs of the {n} truth hours")
-    top = np.sort(np.argsort(-h, kind="stable")[:storm])
-    rest = np.setdiff1d(np.arange(n, dtype=np.int64), top)
-    return np.sort(np.concatenate([top, rest[second_seed_subset(rest.size, k - storm)]])).astype(np.int64)
+    return np.sort(np.argsort(-h, kind="stable")[:storm])
 
 
 def strata_weights(n: int, pick: npt.ArrayLike, *, hs: npt.ArrayLike, storm: int) -> np.ndarray:
@@ -238,8 +243,7 @@ def strata_weights(n: int, pick: npt.ArrayLike, *, hs: npt.ArrayLike, storm: int
         )
     w = np.full(k, (n - storm) / (k - storm))
     if storm:
-        top = np.argsort(-np.asarray(hs, dtype=float).reshape(-1), kind="stable")[:storm]
-        w[np.isin(pick, top)] = 1.0
+        w[np.isin(pick, _storm_hours(n, hs, storm))] = 1.0
     return w
 
 
@@ -427,11 +431,15 @@ def noise_floor(
     if a.shape != b.shape:
         raise ValueError(f"seed1 {a.shape} and seed2 {b.shape} differ in shape")
     n = a.shape[0] if n_window is None else int(n_window)
-    if weights is not None:
-        return _stratified_floor(a, b, window, weights)
-    r = lifecycle.validation_metrics(b, a)["r"]
+    if weights is not None and window is None:
+        raise ValueError("a weighted noise floor needs the window's truth (window=)")
+    # each subset hour's weight in the window (1.0, an exact no-op, for an evenly spaced subset)
+    wt = 1.0 if weights is None else np.asarray(weights, dtype=float).reshape(-1, 1)
+    if weights is not None and wt.shape[0] != a.shape[0]:
+        raise ValueError(f"weights {wt.shape[0]} and seeds {a.shape} differ in hours")
     with np.errstate(divide="ignore", invalid="ignore"):
         if window is None:
+            r = lifecycle.validation_metrics(b, a)["r"]
             var = 0.5 * np.mean((a - b) ** 2, axis=0)
             mean = 0.5 * (a.mean(axis=0) + b.mean(axis=0))
             std_pct = 100.0 * np.sqrt(n * var) / (n * mean)
@@ -439,36 +447,17 @@ def noise_floor(
             w = np.atleast_2d(np.asarray(window, dtype=float).T).T
             if w.shape[1] != a.shape[1]:
                 raise ValueError(f"window {w.shape} and seeds {a.shape} differ in outputs")
-            c2 = np.sum(0.5 * (a - b) ** 2, axis=0) / np.sum((0.5 * (a + b)) ** 2, axis=0)
+            nv = wt * (0.5 * (a - b) ** 2)
+            if weights is None:
+                r = lifecycle.validation_metrics(b, a)["r"]
+            else:  # the window's two-seed correlation, from its weighted mean seed variance
+                r = 1.0 - np.sum(nv, axis=0) / np.sum(wt) / w.var(axis=0)
+            c2 = np.sum(nv, axis=0) / np.sum(wt * (0.5 * (a + b)) ** 2, axis=0)
             std_pct = 100.0 * np.sqrt(c2 * np.sum(w * w, axis=0)) / np.sum(w, axis=0)
     ceiling = np.sqrt(np.clip(r, 0.0, 1.0))
     return {
         "r": r,
         "r_ceiling": ceiling,
-        "sum_difference_pct": signed_error_pct(b.sum(axis=0), a.sum(axis=0)),
-        "sum_std_pct": std_pct,
-    }
-
-
-def _stratified_floor(
-    a: np.ndarray, b: np.ndarray, window: npt.ArrayLike | None, weights: npt.ArrayLike
-) -> dict[str, np.ndarray]:
-    """:func:`noise_floor` of a weighted (stratified) subset."""
-    if window is None:
-        raise ValueError("a weighted noise floor needs the window's truth (window=)")
-    w = np.asarray(weights, dtype=float).reshape(-1, 1)
-    x = np.atleast_2d(np.asarray(window, dtype=float).T).T
-    if w.shape[0] != a.shape[0] or x.shape[1] != a.shape[1]:
-        raise ValueError(f"weights {w.shape[0]}, window {x.shape} and seeds {a.shape} do not match")
-    nv = 0.5 * (a - b) ** 2
-    with np.errstate(divide="ignore", invalid="ignore"):
-        v = np.sum(w * nv, axis=0) / np.sum(w)
-        r = 1.0 - v / x.var(axis=0)
-        c2 = np.sum(w * nv, axis=0) / np.sum(w * (0.5 * (a + b)) ** 2, axis=0)
-        std_pct = 100.0 * np.sqrt(c2 * np.sum(x * x, axis=0)) / np.sum(x, axis=0)
-    return {
-        "r": r,
-        "r_ceiling": np.sqrt(np.clip(r, 0.0, 1.0)),
         "sum_difference_pct": signed_error_pct(b.sum(axis=0), a.sum(axis=0)),
         "sum_std_pct": std_pct,
     }

@@ -4,9 +4,9 @@ The mean runs in one compiled kernel per row (the squared differences of every c
 for all outputs; then per length-scale group the scaled distance, the exponential of
 :mod:`moorlife.rbf.kernels` and the weighted sums in eight fixed partial sums; every row by one
 thread in a fixed order, so the numbers do not depend on chunk size, thread count or the
-machine's vector width). Outputs with the same length scales share their kernel row. The latent variance needs one triangular solve per
-output and chunk (``m^2`` per point: about 15 CPU-s per output for 271,728 hours and 1,000
-training states), so it is computed only when asked for.
+machine's vector width). Outputs with the same length scales share their kernel row. The latent
+variance needs one triangular solve per output and chunk (``m^2`` per point: about 15 CPU-s per
+output for 271,728 hours and 1,000 training states), so it is computed only when asked for.
 """
 
 from __future__ import annotations
