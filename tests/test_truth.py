@@ -381,6 +381,7 @@ def truth_study(study, tmp_path_factory) -> Path:
     start, end = times[h - 12], times[h - 12 + N_HOURS - 1]
     (work / "truth.yaml").write_text(
         f'truth:\n  window: {{start: "{start:%Y-%m-%dT%H:%M}", end: "{end:%Y-%m-%dT%H:%M}"}}\n  n_second_seed: 8\n'
+        "  second_seed_storm: 3\n"
     )
     (work / "train_case.txt").write_text(f"{k} {h}\n")
     smk(work, TARGET, overlays=[*OVERLAYS, "truth.yaml"])
@@ -400,9 +401,10 @@ def test_truth_window_end_to_end(truth_study):
     assert np.all(np.diff(tr["hindcast_index"].values) == 1)
     s2 = mio.open_zarr(w / "results/MS1/truth_seed2.zarr")
     assert s2.sizes["case"] == 8 and s2.attrs["random_stream"] == "truth_seed2"
-    np.testing.assert_array_equal(
-        s2["hindcast_index"].values, tr["hindcast_index"].values[T.second_seed_subset(N_HOURS, 8)]
-    )
+    # the default design: the 3 hours of largest Hs, and 5 evenly spaced over the others
+    pick = T.second_seed_subset(N_HOURS, 8, hs=tr["hs"].values, storm=3)
+    np.testing.assert_array_equal(s2["hindcast_index"].values, tr["hindcast_index"].values[pick])
+    assert set(np.argsort(-tr["hs"].values, kind="stable")[:3]) <= set(pick.tolist())
     # same hours, other stream: the outputs differ
     assert not np.array_equal(s2["damage_sn"].values, tr["damage_sn"].sel(case=s2["case"].values).values)
     cmp = mio.open_zarr(w / TARGET)
@@ -452,26 +454,30 @@ def test_truth_window_end_to_end(truth_study):
 
 
 @pytest.mark.workflow
-def test_truth_second_seed_storm_end_to_end(truth_study, tmp_path):
-    """truth.second_seed_storm: the second seed holds the hours of largest Hs, the comparison is
-    weighted and says so, and the hours shared with the evenly spaced subset keep their bits."""
+def test_truth_even_second_seed_end_to_end(truth_study, tmp_path):
+    """truth.second_seed_storm: 0 is the evenly spaced design: its subset, an unweighted
+    comparison that says so, and the hours it shares with the storm stratum keep their bits."""
     work = tmp_path / "s"
     shutil.copytree(truth_study, work, symlinks=True)
-    (work / "storm.yaml").write_text("truth:\n  second_seed_storm: 3\n")
-    smk(work, TARGET, overlays=_ov("storm.yaml"))
+    (work / "even.yaml").write_text("truth:\n  second_seed_storm: 0\n")
+    smk(work, TARGET, overlays=_ov("even.yaml"))
     tr = mio.open_zarr(work / "results/MS1/truth.zarr")
     s2 = mio.open_zarr(work / "results/MS1/truth_seed2.zarr")
-    pick = T.second_seed_subset(N_HOURS, 8, hs=tr["hs"].values, storm=3)
-    np.testing.assert_array_equal(s2["hindcast_index"].values, tr["hindcast_index"].values[pick])
-    top = np.argsort(-tr["hs"].values, kind="stable")[:3]
-    assert set(top) <= set(pick.tolist())
+    np.testing.assert_array_equal(
+        s2["hindcast_index"].values, tr["hindcast_index"].values[T.second_seed_subset(N_HOURS, 8)]
+    )
     cmp = mio.open_zarr(work / TARGET)
-    assert cmp.attrs["second_seed_storm"] == 3 and "3 storm hours" in cmp["noise_r"].attrs["long_name"]
+    strat = mio.open_zarr(truth_study / TARGET)
+    assert cmp.attrs["second_seed_storm"] == 0 and "storm" not in cmp["noise_r"].attrs["long_name"]
+    assert strat.attrs["second_seed_storm"] == 3 and "3 storm hours" in strat["noise_r"].attrs["long_name"]
     assert np.all(np.isfinite(cmp["ceiling_r"].values)) and np.all(np.isfinite(cmp["seed_sum_std_pct"].values))
-    even = mio.open_zarr(truth_study / "results/MS1/truth_seed2.zarr")
-    both = np.intersect1d(s2["hindcast_index"].values, even["hindcast_index"].values)
+    assert not np.array_equal(cmp["ceiling_r"].values, strat["ceiling_r"].values)
+    # the reconstruction's own figures do not depend on the second seed
+    np.testing.assert_array_equal(cmp["r"].values, strat["r"].values)
+    storm = mio.open_zarr(truth_study / "results/MS1/truth_seed2.zarr")
+    both = np.intersect1d(s2["hindcast_index"].values, storm["hindcast_index"].values)
     assert both.size > 0
-    np.testing.assert_array_equal(s2["damage_sn"].sel(case=both).values, even["damage_sn"].sel(case=both).values)
+    np.testing.assert_array_equal(s2["damage_sn"].sel(case=both).values, storm["damage_sn"].sel(case=both).values)
 
 
 @pytest.mark.workflow
