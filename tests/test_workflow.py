@@ -100,6 +100,17 @@ def test_scheduling_settings_rerun_nothing(study, tmp_path):
     assert "Nothing to be done" in dry.stdout + dry.stderr, dry.stdout[-3000:]
 
 
+def test_band_and_recommendation_settings_rerun_only_the_comparison(study, tmp_path):
+    """lifecycle.uncertainty and lifecycle.recommendation are read by the compare stage only: a
+    change reruns the comparison and its figures, and no fit of lifecycle.zarr."""
+    band = tmp_path / "band.yaml"
+    band.write_text("lifecycle:\n  uncertainty: {coverage: 1.7}\n  recommendation: {curves: [sn]}\n")
+    dry = smk(study, "-n", overlays=[*OVERLAYS, str(band)])
+    jobs = set(re.findall(r"^rule (\w+):", dry.stdout, flags=re.M))
+    assert "compare" in jobs, dry.stdout[-3000:]
+    assert not jobs & {"lifecycle", "simulate_cases", "truth_compare", "sensitivity"}, jobs
+
+
 def test_lint_clean(tmp_path):
     work = copy_repo(tmp_path)
     res = smk(work, "--lint", check=False)

@@ -23,7 +23,7 @@ rule compare:
         "../../envs/moorlife.yaml"
     params:
         systems=MS_IDS,
-        lifecycle=result_settings(config, "lifecycle"),
+        lifecycle=result_settings(config, "lifecycle", keys=("recommendation", "uncertainty")),
         fatigue=config["fatigue"],
     script:
         "../scripts/compare.py"

@@ -24,7 +24,8 @@ rule lifecycle:
     resources:
         mem_mb=2000,
     params:
-        lifecycle=result_settings(config, "lifecycle"),
+        # what the fit reads: the band, the recommendation and the sensitivities rerun their own rules
+        lifecycle=result_settings(config, "lifecycle", keys=("rbf", "adaptive")),
         fatigue=config["fatigue"],
     script:
         "../scripts/lifecycle.py"

@@ -55,7 +55,7 @@ import contextlib
 import copy
 import logging
 import os
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterator, Mapping, Sequence
 from typing import Any
 
 __all__ = ["SCHEDULING_KEYS", "result_settings", "scheduling_free", "logged", "thrust_for"]
@@ -88,7 +88,7 @@ def scheduling_free(section: str, values: Mapping[str, Any] | None) -> dict[str,
     return out
 
 
-def result_settings(config: Mapping[str, Any], section: str) -> dict[str, Any]:
+def result_settings(config: Mapping[str, Any], section: str, keys: Sequence[str] | None = None) -> dict[str, Any]:
     """``config[section]`` without the keys that never change the numbers: a rule's params.
 
     Parameters
@@ -97,8 +97,13 @@ def result_settings(config: Mapping[str, Any], section: str) -> dict[str, Any]:
         The validated study config.
     section : str
         The section's name.
+    keys : sequence of str, optional
+        Keep only these sub-sections: those the rule's stage reads. A rule whose params held
+        the whole section would rerun for a key it never reads (``lifecycle.uncertainty``
+        changes the compare stage's band, not the fit of ``lifecycle.zarr``).
     """
-    return scheduling_free(section, config.get(section, {}))
+    out = scheduling_free(section, config.get(section, {}))
+    return out if keys is None else {k: out[k] for k in keys if k in out}
 
 
 @contextlib.contextmanager
