@@ -44,6 +44,11 @@ def test_check_window_counts_hours():
     assert T.check_window(HC0, HC1, 1, 200, second_seed_storm=100, **kw) == 8760
     with pytest.raises(ValueError, match=r"bad\.yaml: config key 'truth\.second_seed_storm' = 200 is invalid"):
         T.check_window(HC0, HC1, 1, 200, second_seed_storm=200, **kw)
+    # the default stratum with a small second seed: the message says what to change
+    with pytest.raises(
+        ValueError, match=r"= 100 is invalid: .*truth\.n_second_seed - 1 = 49 \(the default, 100, needs"
+    ):
+        T.check_window(HC0, HC1, 1, 50, second_seed_storm=100, **kw)
 
 
 @pytest.mark.parametrize(

@@ -139,7 +139,7 @@ def check_window(
     if isinstance(storm, bool) or int(storm) != storm or not 0 <= int(storm) < n2:
         raise ValueError(
             f"{source}: config key 'truth.second_seed_storm' = {storm!r} is invalid: it must be an integer "
-            f"from 0 to truth.n_second_seed - 1 = {n2 - 1} (set it with any truth.n_second_seed of 100 or fewer)"
+            f"from 0 to truth.n_second_seed - 1 = {n2 - 1} (the default, 100, needs n_second_seed above 100)"
         )
     return n
 
