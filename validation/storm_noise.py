@@ -45,6 +45,24 @@ import reconstruction as rec  # noqa: E402
 STREAMS = ("truth_seed2", "truth_seed3", "truth_seed4")
 
 
+def require_even_seed2(ms: str, results: Path, stores: dict) -> None:
+    """Stop unless ``truth_seed2.zarr`` is the evenly spaced subset (``truth.second_seed_storm: 0``).
+
+    :func:`measure` takes the calm hours' seed variance as the plain mean over the second seed's
+    calm hours, and :func:`target_floor` reads the store as the evenly spaced design: both hold
+    for that subset only. Since 473affb the truth target draws a storm stratum by default.
+    """
+    from moorlife import truth as kernels
+
+    idx, s2 = stores["truth"]["hindcast_index"].values, stores["seed2"]["hindcast_index"].values
+    if not np.array_equal(idx[kernels.second_seed_subset(idx.size, s2.size)], s2):
+        raise SystemExit(
+            f"{results}/{ms}/truth_seed2.zarr is not the evenly spaced subset of its {s2.size} hours (drawn with "
+            "truth.second_seed_storm > 0, the default since 473affb); this script needs the evenly spaced one: "
+            "rebuild it with an overlay 'truth: {second_seed_storm: 0}' (snakemake -R truth_hours_seed2 ...)"
+        )
+
+
 def records(cfg: dict, ms: str, results: Path, work: Path, stores: dict, hs_min: float) -> tuple[np.ndarray, list]:
     """The window positions of the storm hours and their three extra records (simulated when absent)."""
     from moorlife.io import write_zarr
@@ -227,6 +245,7 @@ def main(argv: list[str] | None = None) -> int:
         if stores is None or stores.get("truth") is None or stores.get("seed2") is None:
             print(f"{ms}: no truth.zarr / truth_seed2.zarr under {a.results}: skipped", file=sys.stderr)
             continue
+        require_even_seed2(ms, a.results, stores)
         pick, extra = records(base, ms, a.results, a.work / ms, stores, a.hs)
         out += measure(ms, stores, pick, extra, variants, a.hs)
         if a.second_seed_storm:

@@ -100,10 +100,12 @@ def result_settings(config: Mapping[str, Any], section: str, keys: Sequence[str]
     keys : sequence of str, optional
         Keep only these sub-sections: those the rule's stage reads. A rule whose params held
         the whole section would rerun for a key it never reads (``lifecycle.uncertainty``
-        changes the compare stage's band, not the fit of ``lifecycle.zarr``).
+        changes the compare stage's band, not the fit of ``lifecycle.zarr``). A key the
+        validated section lacks raises ``KeyError`` (a misspelt key would otherwise hand the
+        stage an empty sub-section, filled with the schema's defaults).
     """
     out = scheduling_free(section, config.get(section, {}))
-    return out if keys is None else {k: out[k] for k in keys if k in out}
+    return out if keys is None else {k: out[k] for k in keys}
 
 
 @contextlib.contextmanager
