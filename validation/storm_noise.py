@@ -3,17 +3,21 @@
     python validation/storm_noise.py --results results --systems MS1 MS2 --hs 5.0 \\
         --variant paper= --variant gp_m52=validation/overlays/gp_matern52.yaml > storm.md
 
-The truth target's noise floor (``truth_seed2.zarr``) is one more record of an evenly spaced
-subset of the window's hours. A year's damage variance sits in a few storm hours, which that
-subset rarely holds, so its ``sqrt(r)`` is the ceiling of a calm population. This script
-measures the storm directly: every truth hour with ``Hs >= --hs`` is simulated three more times
+The truth target's noise floor (``truth_seed2.zarr``) is one more record of a subset of the
+window's hours: evenly spaced (``truth.second_seed_storm: 0``), or, by default since 473affb,
+the hours of largest Hs plus evenly spaced others. A year's damage variance sits in a few storm
+hours, which an evenly spaced subset rarely holds, so its ``sqrt(r)`` is the ceiling of a calm
+population, and one record per storm hour is a noisy estimate of a storm's variance. This
+script measures the storm directly: every truth hour with ``Hs >= --hs`` is simulated three more times
 by the simulate stage (random streams ``truth_seed2`` .. ``truth_seed4``, case id = the hour's
 position in the hindcast, as the truth target does; into ``--work/{ms}/``, reused when present).
 With the truth, four records per storm hour.
 
 - The window's noise variance, stratified: the storm hours' own variance of the four records
-  (ddof 1), plus the calm hours at the mean of the evenly spaced subset's calm hours
-  (``(x1 - x2)^2 / 2``). The ceiling of the per-hour r is ``sqrt(1 - noise / var(truth))``.
+  (ddof 1), plus the calm hours at the mean of the second seed's calm hours
+  (``(x1 - x2)^2 / 2``; with a storm stratum, each weighted by the window hours it stands for,
+  ``moorlife.truth.strata_weights``). The ceiling of the per-hour r is
+  ``sqrt(1 - noise / var(truth))``.
 - Each variant (fitted as ``validation/reconstruction.py`` does) on the same hours: per-hour r,
   and its range when the storm hours of the truth are replaced by each of the other records
   (the per-hour r's own seed scatter), and against the truth whose storm hours are the mean of
@@ -22,13 +26,14 @@ With the truth, four records per storm hour.
   (1 is a perfect reconstruction, whose error is the truth record's own noise); the storm's
   reconstructed damage over the mean of the four records.
 
-The hours of the evenly spaced subset that fall in the storm set are simulated again with
+The hours of the second seed that fall in the storm set are simulated again with
 ``truth_seed2``: they must give the bits of ``truth_seed2.zarr`` (checked, printed). The ceiling
-rows also give the window sum's seed sd from the same stratified variance.
+rows also give the window sum's seed sd from the same stratified variance, beside the truth
+target's own ceiling (``sqrt(r)`` of an evenly spaced store, the weighted one of a stratified store).
 
-With ``--second-seed-storm K``, the truth target's own second seed with a storm stratum of K
-hours (``truth.second_seed_storm``, the same number of hours as ``truth_seed2.zarr``) is
-simulated too, and its ceiling and sum's seed sd are printed beside the evenly spaced one's.
+With ``--second-seed-storm K``, the truth target's noise floor of both designs, evenly spaced and
+with a storm stratum of K hours (the same number of hours as ``truth_seed2.zarr``), is printed:
+the one the store holds is read, the other is simulated into ``--work``.
 """
 
 from __future__ import annotations
@@ -45,22 +50,27 @@ import reconstruction as rec  # noqa: E402
 STREAMS = ("truth_seed2", "truth_seed3", "truth_seed4")
 
 
-def require_even_seed2(ms: str, results: Path, stores: dict) -> None:
-    """Stop unless ``truth_seed2.zarr`` is the evenly spaced subset (``truth.second_seed_storm: 0``).
+def seed2_design(ms: str, results: Path, stores: dict, storm: int) -> int:
+    """The storm stratum ``truth_seed2.zarr`` was drawn with: 0 (evenly spaced) or ``storm``
+    (``truth.second_seed_storm`` of the config, the default since 473affb).
 
-    :func:`measure` takes the calm hours' seed variance as the plain mean over the second seed's
-    calm hours, and :func:`target_floor` reads the store as the evenly spaced design: both hold
-    for that subset only. Since 473affb the truth target draws a storm stratum by default.
+    :func:`measure` weights the calm hours' seed variance by the window hours each second-seed
+    hour stands for, and :func:`target_floor` simulates the design the store does not hold: both
+    need to know which design it is. Stops, naming the store, when it is neither.
     """
     from moorlife import truth as kernels
 
-    idx, s2 = stores["truth"]["hindcast_index"].values, stores["seed2"]["hindcast_index"].values
-    if not np.array_equal(idx[kernels.second_seed_subset(idx.size, s2.size)], s2):
-        raise SystemExit(
-            f"{results}/{ms}/truth_seed2.zarr is not the evenly spaced subset of its {s2.size} hours (drawn with "
-            "truth.second_seed_storm > 0, the default since 473affb); this script needs the evenly spaced one: "
-            "rebuild it with an overlay 'truth: {second_seed_storm: 0}' (snakemake -R truth_hours_seed2 ...)"
-        )
+    idx, hs = stores["truth"]["hindcast_index"].values, stores["truth"]["hs"].values
+    s2 = stores["seed2"]["hindcast_index"].values
+    for design in dict.fromkeys((0, int(storm))):
+        if design < s2.size and np.array_equal(
+            idx[kernels.second_seed_subset(idx.size, s2.size, hs=hs, storm=design)], s2
+        ):
+            return design
+    raise SystemExit(
+        f"{results}/{ms}/truth_seed2.zarr: its {s2.size} hours are neither the evenly spaced subset nor the one with "
+        f"truth.second_seed_storm = {storm} (config/config.yaml): rebuild it (snakemake -R truth_hours_seed2 ...)"
+    )
 
 
 def records(cfg: dict, ms: str, results: Path, work: Path, stores: dict, hs_min: float) -> tuple[np.ndarray, list]:
@@ -70,11 +80,18 @@ def records(cfg: dict, ms: str, results: Path, work: Path, stores: dict, hs_min:
     truth, seed2 = stores["truth"], stores["seed2"]
     idx = truth["hindcast_index"].values
     storm = np.flatnonzero(truth["hs"].values >= hs_min)
-    # the subset's hours inside the storm set, plus a few others: the bit check of the streams
-    extra = np.searchsorted(idx, seed2["hindcast_index"].values[::20])
-    pick = np.union1d(storm, extra)
     cases = work / "cases.zarr"
-    if not cases.exists():
+    if cases.exists():  # a run before: its hours, whichever second seed chose the extra ones
+        held = rec._open(cases)["hindcast_index"].values
+        pick = np.searchsorted(idx, held)
+        if not (np.array_equal(idx[np.clip(pick, 0, idx.size - 1)], held) and np.isin(storm, pick).all()):
+            raise SystemExit(
+                f"{cases}: not the storm hours (Hs >= {hs_min} m) of {ms}'s truth window: pass another --work"
+            )
+    else:
+        # the second seed's hours inside the storm set, plus a few others: the bit check of the streams
+        extra = np.searchsorted(idx, seed2["hindcast_index"].values[::20])
+        pick = np.union1d(storm, extra)
         work.mkdir(parents=True, exist_ok=True)
         hours = rec._open(results / "truth" / "hours.zarr")  # the window's sea states, in the truth's order
         if not np.array_equal(hours["hindcast_index"].values, idx):
@@ -102,9 +119,12 @@ def records(cfg: dict, ms: str, results: Path, work: Path, stores: dict, hs_min:
     return pick, out
 
 
-def measure(ms: str, stores: dict, pick: np.ndarray, extra: list, variants: dict, hs_min: float) -> list[str]:
-    """The markdown rows of one system (S-N damage per line)."""
+def measure(
+    ms: str, stores: dict, pick: np.ndarray, extra: list, variants: dict, hs_min: float, design: int = 0
+) -> list[str]:
+    """The markdown rows of one system (S-N damage per line); ``design`` from :func:`seed2_design`."""
     from moorlife import lifecycle
+    from moorlife import truth as kernels
     from moorlife.stages import thrust_for
 
     truth, seed2 = stores["truth"], stores["seed2"]
@@ -119,17 +139,24 @@ def measure(ms: str, stores: dict, pick: np.ndarray, extra: list, variants: dict
     p2 = np.searchsorted(idx, seed2["hindcast_index"].values)
     calm = hs[p2] < hs_min
     x2 = seed2["damage_sn"].transpose("case", "line").values
-    nv_calm = (0.5 * (x[p2] - x2) ** 2)[calm].mean(axis=0)
     n, n_storm = x.shape[0], spos.size
+    half_sq = 0.5 * (x[p2] - x2) ** 2
+    if design:  # the window's calm hours: each second-seed hour weighted by the hours it stands for
+        w = kernels.strata_weights(n, p2, hs=hs, storm=design)
+        nv_calm = np.average(half_sq[calm], axis=0, weights=w[calm])
+        subset = kernels.noise_floor(x[p2], x2, n_window=n, window=x, weights=w)["r_ceiling"]
+    else:
+        nv_calm = half_sq[calm].mean(axis=0)
+        subset = np.sqrt(np.clip([np.corrcoef(x[p2, j], x2[:, j])[0, 1] for j in range(x.shape[1])], 0.0, 1.0))
     noise = (nv_storm.sum(axis=0) + (n - n_storm) * nv_calm) / n
     ceiling = np.sqrt(np.clip(1.0 - noise / x.var(axis=0), 0.0, 1.0))
     sum_sd = 100.0 * np.sqrt(noise * n) / x.sum(axis=0)  # the window sum's seed sd, % (stratified)
-    subset = np.sqrt(np.clip([np.corrcoef(x[p2, j], x2[:, j])[0, 1] for j in range(len(lines))], 0.0, 1.0))
+    label = "subset" if design == 0 else f"the target's, storm {design}"
     rows = []
     for j, ln in enumerate(lines):
         share = nv_storm[:, j].sum() / (noise[j] * n)
         rows.append(
-            f"| {ms} | {ln} | ceiling | {subset[j]:.4f} (subset) / **{ceiling[j]:.4f}** (stratified) | "
+            f"| {ms} | {ln} | ceiling | {subset[j]:.4f} ({label}) / **{ceiling[j]:.4f}** (stratified) | "
             f"| storm noise {100 * share:.0f} % of the window's; the sum's seed sd {sum_sd[j]:.2f} % | | |"
         )
     for name, overlays in variants.items():
@@ -164,36 +191,36 @@ def measure(ms: str, stores: dict, pick: np.ndarray, extra: list, variants: dict
     return rows
 
 
-def target_floor(cfg: dict, ms: str, results: Path, work: Path, stores: dict, storm: int) -> str:
-    """The truth target's noise floor of the S-N damage, evenly spaced (``truth_seed2.zarr``) and
-    with a storm stratum of ``storm`` hours (``truth.second_seed_storm``; its second seed
-    simulated into ``work``): ceiling of the per-hour r and the window sum's seed sd, per line."""
+def target_floor(cfg: dict, ms: str, results: Path, work: Path, stores: dict, storm: int, design: int) -> str:
+    """The truth target's noise floor of the S-N damage, evenly spaced and with a storm stratum of
+    ``storm`` hours (``truth.second_seed_storm``): ceiling of the per-hour r and the window sum's
+    seed sd, per line. ``truth_seed2.zarr`` holds the design ``design`` (:func:`seed2_design`); the
+    other is simulated into ``work`` (reused when present)."""
     from moorlife import truth as kernels
     from moorlife.io import write_zarr
 
     truth, seed2 = stores["truth"], stores["seed2"]
     idx, hs = truth["hindcast_index"].values, truth["hs"].values
     n, k = idx.size, seed2.sizes["case"]
-    pick = kernels.second_seed_subset(n, k, hs=hs, storm=storm)
-    cases, store = work / "stratified_cases.zarr", work / "stratified_seed2.zarr"
-    if not cases.exists():
-        write_zarr(rec._open(results / "truth" / "hours.zarr").isel(case=pick), cases)
-    if not store.exists():
-        rec.simulate_cases(cfg, ms, results, cases, store, stream="truth_seed2", threads=2, log=work / "stratified.log")
     x = truth["damage_sn"].transpose("case", "line").values
-    even = kernels.noise_floor(
-        x[np.searchsorted(idx, seed2["hindcast_index"].values)],
-        seed2["damage_sn"].transpose("case", "line").values,
-        n_window=n,
-        window=x,
-    )
-    strat = kernels.noise_floor(
-        x[pick],
-        rec._open(store)["damage_sn"].transpose("case", "line").values,
-        n_window=n,
-        window=x,
-        weights=kernels.strata_weights(n, pick, hs=hs, storm=storm),
-    )
+    floors = {}
+    for d, name in ((0, "even"), (storm, "stratified")):
+        pick = kernels.second_seed_subset(n, k, hs=hs, storm=d)
+        if d == design:
+            rec2 = seed2
+        else:
+            cases, store = work / f"{name}_cases.zarr", work / f"{name}_seed2.zarr"
+            if not cases.exists():
+                write_zarr(rec._open(results / "truth" / "hours.zarr").isel(case=pick), cases)
+            if not store.exists():
+                rec.simulate_cases(
+                    cfg, ms, results, cases, store, stream="truth_seed2", threads=2, log=work / f"{name}.log"
+                )
+            rec2 = rec._open(store)
+        weights = kernels.strata_weights(n, pick, hs=hs, storm=d) if d else None
+        y = rec2["damage_sn"].transpose("case", "line").values
+        floors[name] = kernels.noise_floor(x[pick], y, n_window=n, window=x, weights=weights)
+    even, strat = floors["even"], floors["stratified"]
 
     def f(v, d):
         return " / ".join(f"{u:.{d}f}" for u in v)
@@ -225,8 +252,9 @@ def main(argv: list[str] | None = None) -> int:
         "(in brackets its range over the four records of the storm hours), and against the truth with the storm hours "
         "at the mean of their four records; the storm's share of "
         "the squared error; that error over the storm's summed seed variance (1: a perfect reconstruction); the "
-        "storm's reconstructed damage over the four records' mean. Ceiling rows: sqrt(r) of the evenly spaced "
-        "second seed, and the stratified ceiling.",
+        "storm's reconstructed damage over the four records' mean. Ceiling rows: the truth target's ceiling "
+        "(sqrt(r) of an evenly spaced second seed, the weighted one of a stratified one), and the stratified "
+        "ceiling of the four records.",
         "",
         "| system | line | variant | per-hour r | r, storm hours at their 4-record mean "
         "| storm share of squared error | storm error / storm noise | storm sum / 4-record mean |",
@@ -245,11 +273,15 @@ def main(argv: list[str] | None = None) -> int:
         if stores is None or stores.get("truth") is None or stores.get("seed2") is None:
             print(f"{ms}: no truth.zarr / truth_seed2.zarr under {a.results}: skipped", file=sys.stderr)
             continue
-        require_even_seed2(ms, a.results, stores)
+        design = seed2_design(ms, a.results, stores, base["truth"]["second_seed_storm"])
         pick, extra = records(base, ms, a.results, a.work / ms, stores, a.hs)
-        out += measure(ms, stores, pick, extra, variants, a.hs)
+        out += measure(ms, stores, pick, extra, variants, a.hs, design)
         if a.second_seed_storm:
-            target.append(target_floor(base, ms, a.results, a.work / ms, stores, a.second_seed_storm))
+            if design not in (0, a.second_seed_storm):
+                raise SystemExit(
+                    f"--second-seed-storm {a.second_seed_storm}: {ms}'s truth_seed2.zarr has a stratum of {design}"
+                )
+            target.append(target_floor(base, ms, a.results, a.work / ms, stores, a.second_seed_storm, design))
         print(f"{ms}: done", file=sys.stderr, flush=True)
     print("\n".join(out + (target if a.second_seed_storm else [])))
     return 0
