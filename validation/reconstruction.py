@@ -22,6 +22,10 @@ phases), then the rounds, picked by ``moorlife.selection.rounds.pick_round`` and
 simulate stage itself into ``--work/{ms}/{variant}/`` (resumable; reused when present). The
 validation states are the study's, so every variant is measured on the same 225 realisations.
 
+With ``--choose NAME=A,B``, NAME is also reported: per output, the figures of variant A or B,
+whichever has the smaller leave-one-out RMS (in the output's units) on the training states; the
+validation states and the truth never steer it (:func:`choose`).
+
 With ``--validation-seeds K`` (K >= 2), the 225 validation states are simulated K - 1 more times
 (random streams ``validation_seed2`` .. ``validation_seedK``, into ``--work/{ms}/validation_seeds/``,
 resumable) and every variant is also measured against the mean of the K records. The noise
@@ -210,6 +214,7 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
     cpu = time.process_time() - t0
     out: dict[str, Any] = {"cpu": cpu, "n_train": int(lc.attrs["n_train"])}
     out["validation_r"] = pd.Series(lc["validation_r"].values, index=lc["output"].values.astype(object).astype(str))
+    out["loo"] = pd.Series(lc["loo_rmse_units"].values, index=out["validation_r"].index)  # training states only
     sn = lc["utilisation"].sel(curve="sn")  # DFF x design-life damage per line: the design check
     out["utilisation"] = pd.Series(sn.values, index=sn["line"].values.astype(object).astype(str))
     out["choice"] = pd.DataFrame(
@@ -265,6 +270,34 @@ def against_records(lc: xr.Dataset, records: list[xr.Dataset], outputs: Any) -> 
         "ceiling_mean": pd.Series(ck, index=labels),
         "n_records": len(stack),
     }
+
+
+def choose(a: dict[str, Any], b: dict[str, Any]) -> dict[str, Any]:
+    """Per output, the figures of ``a`` or ``b``, whichever has the smaller leave-one-out RMS in
+    units on the training states (ties: ``a``). The validation states and the truth steer
+    nothing; the cost is both fits'. A line's window damage and design check follow the choice
+    of its damage output (``damage_sn/M1`` for the S-N damage of M1)."""
+    pick_b = b["loo"] < a["loo"]
+
+    def per_output(key: str) -> pd.Series:
+        return a[key].where(~pick_b.reindex(a[key].index), b[key])
+
+    out: dict[str, Any] = {"cpu": a["cpu"] + b["cpu"], "n_train": a["n_train"], "loo": per_output("loo")}
+    out["validation_r"] = per_output("validation_r")
+    out["choice"] = pd.DataFrame({"variant": np.where(pick_b, "b", "a")}, index=a["loo"].index)
+    out["utilisation"] = pd.Series(
+        {ln: (b if pick_b[f"damage_sn/{ln}"] else a)["utilisation"][ln] for ln in a["utilisation"].index}
+    )
+    for key in ("truth_r", "noise_r", "ceiling_r", "records_r", "ceiling_one", "ceiling_mean"):
+        if key in a:
+            out[key] = per_output(key)
+    for key in ("n_hours", "n_records"):
+        if key in a:
+            out[key] = a[key]
+    if "window" in a:
+        rows = [(b if pick_b[f"damage_{c}/{ln}"] else a)["window"].loc[[(c, ln)]] for c, ln in a["window"].index]
+        out["window"] = pd.concat(rows)
+    return out
 
 
 def load(results: Path, ms: str) -> dict[str, xr.Dataset] | None:
@@ -389,6 +422,13 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--work", type=Path, default=ROOT / "results" / "validation_rounds")
     p.add_argument("--choices", action="store_true", help="also print each variant's per-output choices")
     p.add_argument(
+        "--choose",
+        action="append",
+        default=[],
+        metavar="NAME=A,B",
+        help="also a variant NAME: per output, variant A's or B's figures by the training states' leave-one-out",
+    )
+    p.add_argument(
         "--validation-seeds",
         type=int,
         default=1,
@@ -416,7 +456,13 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{ms} {name}: min validation r {m['validation_r'].min():.4f}, {m['cpu']:.1f} CPU-s", file=sys.stderr)
             if a.choices:
                 print(f"{ms} {name} choices:\n{m['choice'].to_string()}", file=sys.stderr)
-    print(report(res, list(variants)))
+        for spec in a.choose:
+            name, _, pair = spec.partition("=")
+            va, vb = pair.split(",")
+            res[(ms, name)] = m = choose(res[(ms, va)], res[(ms, vb)])
+            picked = ", ".join(o for o, c in m["choice"]["variant"].items() if c == "b")
+            print(f"{ms} {name}: min validation r {m['validation_r'].min():.4f}; {vb} for: {picked}", file=sys.stderr)
+    print(report(res, list(variants) + [c.partition("=")[0] for c in a.choose]))
     return 0
 
 
