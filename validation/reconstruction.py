@@ -440,6 +440,15 @@ def main(argv: list[str] | None = None) -> int:
     for spec in a.variant or ["paper="]:
         name, _, files = spec.partition("=")
         variants[name] = study([f for f in files.split(",") if f])
+    pairs = {}
+    for spec in a.choose:  # checked before any fit
+        name, _, pair = spec.partition("=")
+        parts = pair.split(",")
+        if len(parts) != 2 or not all(v in variants for v in parts) or not name or name in variants:
+            p.error(
+                f"--choose {spec!r}: expected NAME=A,B with A and B among the variants {list(variants)} and a new NAME"
+            )
+        pairs[name] = tuple(parts)
     res: dict[tuple[str, str], dict[str, Any]] = {}
     for ms in a.systems:
         stores = load(a.results, ms)
@@ -456,13 +465,14 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{ms} {name}: min validation r {m['validation_r'].min():.4f}, {m['cpu']:.1f} CPU-s", file=sys.stderr)
             if a.choices:
                 print(f"{ms} {name} choices:\n{m['choice'].to_string()}", file=sys.stderr)
-        for spec in a.choose:
-            name, _, pair = spec.partition("=")
-            va, vb = pair.split(",")
+        for name, (va, vb) in pairs.items():
             res[(ms, name)] = m = choose(res[(ms, va)], res[(ms, vb)])
             picked = ", ".join(o for o, c in m["choice"]["variant"].items() if c == "b")
             print(f"{ms} {name}: min validation r {m['validation_r'].min():.4f}; {vb} for: {picked}", file=sys.stderr)
-    print(report(res, list(variants) + [c.partition("=")[0] for c in a.choose]))
+    if not res:
+        print(f"no {', '.join(a.systems)}/simulations.zarr under {a.results}: nothing measured", file=sys.stderr)
+        return 1
+    print(report(res, list(variants) + list(pairs)))
     return 0
 
 
