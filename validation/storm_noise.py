@@ -140,14 +140,11 @@ def measure(
     calm = hs[p2] < hs_min
     x2 = seed2["damage_sn"].transpose("case", "line").values
     n, n_storm = x.shape[0], spos.size
-    half_sq = 0.5 * (x[p2] - x2) ** 2
-    if design:  # the window's calm hours: each second-seed hour weighted by the hours it stands for
-        w = kernels.strata_weights(n, p2, hs=hs, storm=design)
-        nv_calm = np.average(half_sq[calm], axis=0, weights=w[calm])
-        subset = kernels.noise_floor(x[p2], x2, n_window=n, window=x, weights=w)["r_ceiling"]
-    else:
-        nv_calm = half_sq[calm].mean(axis=0)
-        subset = np.sqrt(np.clip([np.corrcoef(x[p2, j], x2[:, j])[0, 1] for j in range(x.shape[1])], 0.0, 1.0))
+    # the window's calm hours: each second-seed hour weighted by the window hours it stands for
+    # (all alike for the evenly spaced subset); the truth target's own ceiling beside it
+    w = kernels.strata_weights(n, p2, hs=hs, storm=design)
+    nv_calm = np.average((0.5 * (x[p2] - x2) ** 2)[calm], axis=0, weights=w[calm])
+    subset = kernels.noise_floor(x[p2], x2, n_window=n, window=x, weights=w if design else None)["r_ceiling"]
     noise = (nv_storm.sum(axis=0) + (n - n_storm) * nv_calm) / n
     ceiling = np.sqrt(np.clip(1.0 - noise / x.var(axis=0), 0.0, 1.0))
     sum_sd = 100.0 * np.sqrt(noise * n) / x.sum(axis=0)  # the window sum's seed sd, % (stratified)
