@@ -94,22 +94,25 @@ def patch(mode: str, f_min: float | None, f_max: float | None) -> None:
     lo = 1.0 / 3600.0 if f_min is None else f_min
     hi = float(wind_cfg["f_max"]) if f_max is None else f_max
     su = sigma_u(wind_cfg, GRID, lo, hi)
-    tables: dict[int, np.ndarray] = {}
+    # every thrust coordinate of the run is this platform's: one table, checked at each call
+    own = spaces.thrust_curve(platform, str(ROOT / cfg["platform"]))
+    table = thrust_sd_table(own, su, mode)
+    at = [4.0, 8.0, 10.0, 11.4, 12.0, 13.0, 15.0, 20.0, 25.0]
+    print(
+        f"sigma_T ({mode}, {lo:.3g}-{hi:.3g} Hz): "
+        + ", ".join(f"{w:g} m/s {np.interp(w, GRID, su):.2f} m/s {np.interp(w, GRID, table) / 1e3:.1f} kN" for w in at),
+        file=sys.stderr,
+    )
 
     def thrust_sd(curve: spaces.ThrustCurve, wind_speed: Any) -> np.ndarray:
-        key = id(curve)
-        if key not in tables:
-            tables[key] = thrust_sd_table(curve, su, mode)
-            at = [4.0, 8.0, 10.0, 11.4, 12.0, 13.0, 15.0, 20.0, 25.0]
-            print(
-                f"sigma_T ({mode}, {lo:.3g}-{hi:.3g} Hz): "
-                + ", ".join(
-                    f"{w:g} m/s {np.interp(w, GRID, su):.2f} m/s {np.interp(w, GRID, tables[key]) / 1e3:.1f} kN"
-                    for w in at
-                ),
-                file=sys.stderr,
+        same = all(
+            np.array_equal(getattr(curve, f.name), getattr(own, f.name)) for f in dataclasses.fields(spaces.ThrustCurve)
+        )
+        if not same:
+            raise ValueError(
+                f"rbf_thrust_sd.py: a thrust curve other than {cfg['platform']}'s; its table is not this one"
             )
-        return np.interp(np.asarray(wind_speed, dtype=float), GRID, tables[key])
+        return np.interp(np.asarray(wind_speed, dtype=float), GRID, table)
 
     spaces.thrust_at = thrust_sd
 
