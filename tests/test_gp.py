@@ -226,8 +226,10 @@ def test_bad_settings_are_refused():
         gp.fit_gp(x, x[:, 2], is_direction=MASK, covariance="matern12")
     with pytest.raises(ValueError, match="not positive"):
         gp.fit_gp(x, x[:, 2] - 3, is_direction=MASK, log_output=True)
-    with pytest.raises(ValueError, match="choose = 'global'"):
-        lifecycle.RBFSettings.from_config({"method": "gp", "choose": "per_output"})
+    with pytest.raises(ValueError, match="gp.thrust = true with choose = 'per_output'"):
+        lifecycle.RBFSettings.from_config({"method": "gp", "choose": "per_output", "gp": {"thrust": True}})
+    with pytest.raises(ValueError, match=r"the GP's candidates are \['paper', 'thrust'\], not \['weighted'\]"):
+        lifecycle.RBFSettings.from_config({"method": "gp", "choose": "per_output", "spaces": ["paper", "weighted"]})
     with pytest.raises(ValueError, match="min <= initial <= max"):
         lifecycle.RBFSettings.from_config({"method": "gp", "gp": {"noise": {"initial": 2.0}}})
 

@@ -8,6 +8,7 @@ import pytest
 import xarray as xr
 
 from moorlife import fatigue, gp, lifecycle, names
+from moorlife.config import ConfigError
 
 LINES = list(names.LINES)
 
@@ -781,3 +782,136 @@ def test_gp_sd_indicator_is_the_largest_latent_sd_over_the_scale():
     assert np.all(ind_loo[dist == 0] == 0) and not np.allclose(ind_loo, ind)
     picks = lifecycle.suggest_states(model, hp, ind, 4, distance=dist)
     assert picks[0] == int(np.argmax(ind)) and np.unique(picks).size == 4
+
+
+def test_gp_per_output_choice_takes_the_thrust_space_for_a_thrust_ridge():
+    """method: gp, choose: per_output: one GP per space, each output keeps the smaller leave-one-out."""
+    curve = _thrust_curve()
+    hc = _hindcast(3000, seed=21)
+    cases = _cases(hc, 150, 30, seed=22)
+    x, y = lifecycle._points(cases, "case"), _ridge_outputs(cases, curve)
+    tr = cases["role"].values == "train"
+    cols = [("damage_sn", "M1"), ("surge_mpm", None)]
+    gp_cfg = {"subsample": 0, "covariance": "matern52", "indicator": "sd"}
+    per = lifecycle.RBFSettings.from_config({**GP, "choose": "per_output", "gp": gp_cfg})
+    model = lifecycle.fit_outputs(x[tr], y[tr], cols, per, thrust=curve)
+    fits = {
+        sp: lifecycle.fit_outputs(
+            x[tr],
+            y[tr],
+            cols,
+            lifecycle.RBFSettings.from_config({**GP, "gp": {**gp_cfg, "thrust": sp == "thrust"}}),
+            thrust=curve,
+        )
+        for sp in ("paper", "thrust")
+    }
+    rmse = np.array([fits["paper"].loo_rmse_units, fits["thrust"].loo_rmse_units])
+    assert model.input_space[0] == "thrust" and rmse[1, 0] < 0.5 * rmse[0, 0]  # the ridge: the thrust space
+    np.testing.assert_array_equal(model.input_space, np.array(["paper", "thrust"])[np.argmin(rmse, axis=0)])
+    np.testing.assert_array_equal(model.loo_rmse_units, rmse.min(axis=0))
+    at = x[~tr]
+    got = lifecycle.predict_outputs(model, at)
+    for j, sp in enumerate(model.input_space):  # each output is its space's GP, bit for bit
+        np.testing.assert_array_equal(got[:, j], lifecycle.predict_outputs(fits[sp], at)[:, j])
+        np.testing.assert_array_equal(model.loo_error[:, j], fits[sp].loo_error[:, j])
+        scale = np.where(np.arange(2) == j, 1.0, np.inf)
+        own, _ = lifecycle.error_indicator(fits[sp], at, scale)
+        assert np.all(lifecycle.error_indicator(model, at, [1.0, 1.0])[0] >= own)  # the sd indicator: the max
+    rmse_val = lifecycle.validation_metrics(got, y[~tr])["rmse"]
+    assert (
+        rmse_val[0]
+        < 0.5 * lifecycle.validation_metrics(lifecycle.predict_outputs(fits["paper"], at), y[~tr])["rmse"][0]
+    )
+
+
+def test_gp_per_output_choice_with_outputs_in_both_spaces():
+    """Outputs split between the spaces: the prediction, the records and the sd indicator per model."""
+    curve = _thrust_curve()
+    hc = _hindcast(800, seed=23)
+    cases = _cases(hc, 60, 15, seed=24)
+    x, y = lifecycle._points(cases, "case"), _ridge_outputs(cases, curve)
+    cols = [("damage_sn", "M1"), ("surge_mpm", None)]
+    settings = lifecycle.RBFSettings.from_config({**GP, "choose": "per_output", "gp": {"subsample": 0}})
+    paper = lifecycle.fit_outputs(x, y, cols, lifecycle.RBFSettings.from_config({**GP, "gp": {"subsample": 0}}))
+    thrust = lifecycle.fit_outputs(
+        x, y, cols, lifecycle.RBFSettings.from_config({**GP, "gp": {"subsample": 0, "thrust": True}}), thrust=curve
+    )
+    # force a split whichever way the leave-one-out falls: damage from the thrust GP, surge from the paper GP
+    mixed = lifecycle.fit.Reconstruction(
+        **{
+            **{f: getattr(paper, f) for f in paper.__dataclass_fields__},
+            "models": (gp.select_outputs(paper.models[0], [1]), gp.select_outputs(thrust.models[0], [0])),
+            "columns": (np.array([1]), np.array([0])),
+            "spaces": ("paper", "thrust"),
+            "thrust": curve,
+            "input_space": np.array(["thrust", "paper"]),
+        }
+    )
+    at = lifecycle._points(hc, "time")[:50]
+    got = lifecycle.predict_outputs(mixed, at)
+    np.testing.assert_array_equal(got[:, 0], lifecycle.predict_outputs(thrust, at)[:, 0])
+    np.testing.assert_array_equal(got[:, 1], lifecycle.predict_outputs(paper, at)[:, 1])
+    inputs, ls, _, noise = lifecycle.adapters._gp_records(mixed)
+    k = inputs.index("thrust")
+    assert np.isnan(ls[1, k]) and ls[0, k] > 0 and not np.isnan(np.delete(ls, k, axis=1)).any()
+    np.testing.assert_array_equal(
+        noise, [np.sqrt(thrust.models[0].noise_var[0]), np.sqrt(paper.models[0].noise_var[1])]
+    )
+    with pytest.raises(ValueError, match="out of the model's 2 outputs"):
+        gp.select_outputs(paper.models[0], [2])
+    ds = lifecycle.reconstruct_lifecycle(hc, cases, _sims(cases), settings=settings, n_suggest=3, thrust=curve)
+    assert ds.attrs["rbf_choose"] == "per_output" and "rbf_thrust_statistic" not in ds.attrs
+    assert set(ds["input_space"].values.astype(object)) <= {"paper", "thrust"}
+
+
+def test_turbulent_thrust_rises_below_rated_dips_at_rated_and_has_no_cut_out_spike():
+    curve = _thrust_curve()
+    wind = {"spectrum": "npd", "height": 90.0}
+    tt = lifecycle.turbulent_thrust(curve, wind, 3600.0)
+    at = lambda w: float(lifecycle.thrust_at(tt, w))  # noqa: E731
+    assert at(6.0) < at(8.0) < at(10.0)  # below rated: the slope of T(W) and sigma_u both grow
+    assert at(11.0) < 0.8 * at(10.0) and at(11.0) < 0.8 * at(12.0)  # the dip at rated: the slope changes sign
+    assert at(12.0) > at(14.0) > at(17.0)  # above rated: pitch control flattens T(W)
+    assert abs(at(25.05) - at(24.95)) < 2e3  # N: no shutdown spike at cut-out (the ramp would give 1.7e5)
+    assert max(at(w) for w in np.arange(3.0, 35.0, 0.05)) < 1e5
+    x = np.array([[11.4, 0.0, 1.0, 8.0, 0.0], [9.0, 90.0, 2.0, 9.0, 180.0]])
+    x6, _, lo6, span6 = lifecycle.space_inputs("thrust", x, [0.0] * 5, [30.0, 180.0, 10.0, 20.0, 180.0], tt)
+    np.testing.assert_array_equal(x6[:, 5], lifecycle.thrust_at(tt, x[:, 0]))
+    assert lo6[5] >= 0 and span6[5] == pytest.approx(max(at(w) for w in np.arange(0.0, 30.0, 0.01)) - lo6[5], rel=1e-9)
+
+
+def test_turbulence_kernels_against_closed_forms():
+    from moorlife.lifecycle import turbulence
+
+    u = np.array([8.0, 12.0])
+    kaimal = {"spectrum": "kaimal", "turbulence_intensity": 0.12, "length_scale": 340.2}
+    np.testing.assert_allclose(turbulence.wind_sd(u, kaimal, 0.0, 10.0), 0.12 * u, rtol=5e-3)  # the whole variance
+    assert np.all(turbulence.wind_sd(u, kaimal, 1.0 / 600.0, 10.0) < 0.12 * u)  # an hour's mean keeps the slow part
+    sd = turbulence.thrust_sd(lambda v: 3.0 * v + 1.0, [5.0, 6.0], [0.5, 1.0])
+    np.testing.assert_allclose(sd, [1.5, 3.0], rtol=2e-3)  # linear T: slope x sigma_u (quadrature over +-4 sd)
+    capped = turbulence.thrust_sd(lambda v: v**2, [20.0, 30.0], [1.0, 2.0], cap=25.0)
+    np.testing.assert_allclose(capped[1], turbulence.thrust_sd(lambda v: v**2, [25.0], [2.0])[0])
+    with pytest.raises(ValueError, match="0 <= f_min < f_max"):
+        turbulence.wind_sd(u, kaimal, 1.0, 0.5)
+    with pytest.raises(ValueError, match="2 speeds and 1 sigma_u"):
+        turbulence.thrust_sd(np.abs, [1.0, 2.0], [1.0])
+
+
+def test_thrust_for_builds_the_turbulent_thrust_from_the_wind_section():
+    from pathlib import Path
+
+    from moorlife.stages import thrust_for
+
+    platform = Path(__file__).resolve().parents[1] / "config/platform.yaml"
+    cfg = {**GP, "gp": {"thrust": True}, "thrust": {"statistic": "turbulent_sd"}}
+    settings = lifecycle.RBFSettings.from_config(cfg)
+    assert settings.thrust_statistic == "turbulent_sd" and settings.thrust_averaging_time == 3600.0
+    with pytest.raises(ValueError, match="thrust.statistic = 'turbulent_sd': the stage needs simulation.wind"):
+        thrust_for(settings, platform)
+    tt = thrust_for(settings, platform, {"spectrum": "npd"})
+    ref = lifecycle.turbulent_thrust(_thrust_curve(), {"spectrum": "npd", "height": 90.0}, 3600.0)
+    np.testing.assert_array_equal(tt.sd, ref.sd)
+    steady = thrust_for(lifecycle.RBFSettings.from_config({**GP, "gp": {"thrust": True}}), platform)
+    assert isinstance(steady, lifecycle.ThrustCurve)
+    with pytest.raises(ConfigError, match="statistic"):
+        lifecycle.RBFSettings.from_config({"thrust": {"statistic": "mean"}})

@@ -73,6 +73,8 @@ RENAMED = {
         "grid_n": "grid.n",
         "trend_knots": "wind_trend.knots",
         "trend_harmonics": "wind_trend.harmonics",
+        "thrust_statistic": "thrust.statistic",
+        "thrust_averaging_time": "thrust.averaging_time",
     },
 }
 

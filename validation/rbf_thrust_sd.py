@@ -33,7 +33,10 @@ MODE:
   value), evaluated at ``min(W, cut_out)``: no spike, and the storm hours above cut-out share
   the value at cut-out.
 
-Measured in ``validation/reconstruction.md`` section 18 (not adopted).
+Measured in ``validation/reconstruction.md`` section 18 (not adopted). The ``operating`` mode
+at the default band is now in the package, ``lifecycle.rbf.thrust.statistic: turbulent_sd``
+(:func:`moorlife.lifecycle.turbulent_thrust`, the same table to the bit): this script keeps the
+``full`` mode and other bands, on the package's kernels (:mod:`moorlife.lifecycle.turbulence`).
 """
 
 from __future__ import annotations
@@ -46,39 +49,19 @@ from typing import Any
 
 import numpy as np
 
-from moorlife import environment
-from moorlife.lifecycle import spaces
+from moorlife.lifecycle import spaces, turbulence
 
 ROOT = Path(__file__).resolve().parents[1]
 _THRUST_AT = spaces.thrust_at
-#: The tabulation of sigma_T(W) (m/s) and the quadrature nodes (in units of sigma_u).
-GRID = np.linspace(0.0, 45.0, 901)
-NODES = np.linspace(-4.0, 4.0, 161)
-#: Frequencies of the integral of the wind spectrum.
-N_FREQ = 20000
-
-
-def sigma_u(wind_cfg: dict[str, Any], speeds: np.ndarray, f_min: float, f_max: float) -> np.ndarray:
-    """Standard deviation of the hub wind (m/s) over ``[f_min, f_max]`` Hz at each mean speed."""
-    f = np.linspace(f_min, f_max, N_FREQ)
-    s = [environment.wind_spectrum(f, max(float(u), 0.1), wind_cfg) for u in speeds]
-    return np.sqrt(np.array([np.trapezoid(si, f) for si in s]))
+GRID = turbulence.GRID
 
 
 def thrust_sd_table(curve: spaces.ThrustCurve, su: np.ndarray, mode: str) -> np.ndarray:
     """``sigma_T`` (N) at every speed of :data:`GRID`, given ``sigma_u`` there."""
-    weights = np.exp(-(NODES**2) / 2.0)
-    weights /= weights.sum()
-    operating = dataclasses.replace(curve, cut_out=1e3, shutdown_ramp=0.0)
-    out = np.empty_like(GRID)
-    for i, (w, s) in enumerate(zip(GRID, su)):
-        if mode == "operating":
-            t = _THRUST_AT(operating, np.clip(min(w, curve.cut_out) + s * NODES, 0.0, None))
-        else:
-            t = _THRUST_AT(curve, np.clip(w + s * NODES, 0.0, None))
-        mean = float((t * weights).sum())
-        out[i] = np.sqrt(float(((t - mean) ** 2 * weights).sum()))
-    return out
+    if mode == "operating":
+        operating = dataclasses.replace(curve, cut_out=1e3, shutdown_ramp=0.0)
+        return turbulence.thrust_sd(lambda v: _THRUST_AT(operating, v), GRID, su, cap=curve.cut_out)
+    return turbulence.thrust_sd(lambda v: _THRUST_AT(curve, v), GRID, su)
 
 
 def patch(mode: str, f_min: float | None, f_max: float | None) -> None:
@@ -93,7 +76,7 @@ def patch(mode: str, f_min: float | None, f_max: float | None) -> None:
     wind_cfg = {**cfg["simulation"]["wind"], "height": float(platform["turbine"]["hub_height"])}
     lo = 1.0 / 3600.0 if f_min is None else f_min
     hi = float(wind_cfg["f_max"]) if f_max is None else f_max
-    su = sigma_u(wind_cfg, GRID, lo, hi)
+    su = turbulence.wind_sd(GRID, wind_cfg, lo, hi)
     # every thrust coordinate of the run is this platform's: one table, checked at each call
     own = spaces.thrust_curve(platform, str(ROOT / cfg["platform"]))
     table = thrust_sd_table(own, su, mode)

@@ -87,7 +87,7 @@ def adaptive_training(
     cs = cases.isel(case=np.flatnonzero(keep))
     sm = sims.sel(case=cs["case"].values)
     settings = lifecycle.rbf_settings(cfg["lifecycle"]["rbf"])
-    thrust = thrust_for(settings, ROOT / cfg["platform"])
+    thrust = thrust_for(settings, ROOT / cfg["platform"], cfg["simulation"]["wind"])
     picks, rsims = [], []
     for r in range(1, ad["rounds"] + 1):
         pdir = work / "picks"
@@ -209,7 +209,7 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
         settings=settings,
         fatigue_cfg=cfg["fatigue"],
         compare_transforms=False,
-        thrust=thrust_for(settings, ROOT / cfg["platform"]),
+        thrust=thrust_for(settings, ROOT / cfg["platform"], cfg["simulation"]["wind"]),
     )
     cpu = time.process_time() - t0
     out: dict[str, Any] = {"cpu": cpu, "n_train": int(lc.attrs["n_train"])}

@@ -68,7 +68,7 @@ def damage_mass(cfg: dict[str, Any], cases: xr.Dataset, sims: xr.Dataset, hindca
         settings=settings,
         n=n_train,
         seeds=1,
-        thrust=thrust_for(settings, harness.ROOT / cfg["platform"]),
+        thrust=thrust_for(settings, harness.ROOT / cfg["platform"], cfg["simulation"]["wind"]),
     )
     out = ds["damage_share"].to_pandas()
     out.index = ds[DIM].values

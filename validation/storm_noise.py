@@ -166,7 +166,7 @@ def measure(
             settings=settings,
             fatigue_cfg=cfg["fatigue"],
             compare_transforms=False,
-            thrust=thrust_for(settings, rec.ROOT / cfg["platform"]),
+            thrust=thrust_for(settings, rec.ROOT / cfg["platform"], cfg["simulation"]["wind"]),
         )
         p = lc["damage_sn"].isel(time=idx).transpose("time", "line").values
         for j, ln in enumerate(lines):

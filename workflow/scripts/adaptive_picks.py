@@ -4,7 +4,9 @@ from moorlife.stages import rounds
 
 
 def main(smk) -> None:
-    rounds.run(**smk.input, **smk.output, **smk.params, log=smk.log[0])
+    # simulation.wind (the turbulent thrust coordinate): from the config, not a param; a change
+    # of it reruns the simulations, an input
+    rounds.run(**smk.input, **smk.output, **smk.params, wind=smk.config["simulation"]["wind"], log=smk.log[0])
 
 
 if __name__ == "__main__":

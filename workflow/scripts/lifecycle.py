@@ -4,7 +4,7 @@ from moorlife.stages import lifecycle
 
 
 def main(smk) -> None:
-    # lifecycle.rbf.chunk_rows changes memory only: read from the config, not a param (no rerun)
+    # not params: chunk_rows is memory only; a change of simulation.wind reruns the simulations
     lifecycle.run(
         **smk.input,
         **smk.output,
@@ -12,6 +12,7 @@ def main(smk) -> None:
         log=smk.log[0],
         threads=smk.threads,
         chunk_rows=smk.config["lifecycle"]["rbf"]["chunk_rows"],
+        wind=smk.config["simulation"]["wind"],
     )
 
 

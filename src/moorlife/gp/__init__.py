@@ -32,14 +32,15 @@ Back-transform of a ``log10`` output
     point and output, see :mod:`moorlife.gp.predict`).
 
 Modules: :mod:`~moorlife.gp.covariance` (the correlation families),
-:mod:`~moorlife.gp.fit` (embedding, hyperparameters, conditioning, leave-one-out) and
+:mod:`~moorlife.gp.fit` (embedding, hyperparameters, conditioning, leave-one-out, the
+models of some outputs) and
 :mod:`~moorlife.gp.predict` (mean, latent variance, back-transform).
 """
 
 from __future__ import annotations
 
 from moorlife.gp.covariance import GP_COVARIANCES, correlation
-from moorlife.gp.fit import GP_KERNELS, GP_RETRANSFORMS, GPModel, chord_embed, embedded_names, fit_gp
+from moorlife.gp.fit import GP_KERNELS, GP_RETRANSFORMS, GPModel, chord_embed, embedded_names, fit_gp, select_outputs
 from moorlife.gp.predict import predict_gp, predict_latent
 
 __all__ = [
@@ -53,4 +54,5 @@ __all__ = [
     "fit_gp",
     "predict_gp",
     "predict_latent",
+    "select_outputs",
 ]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import logging
 import warnings
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import numpy.typing as npt
@@ -22,6 +22,7 @@ __all__ = [
     "chord_embed",
     "embedded_names",
     "fit_gp",
+    "select_outputs",
 ]
 
 log = logging.getLogger("moorlife.gp")
@@ -102,6 +103,39 @@ class GPModel:
     @property
     def n_outputs(self) -> int:
         return int(self.weights.shape[1])
+
+
+def select_outputs(model: GPModel, columns: npt.ArrayLike) -> GPModel:
+    """The :class:`GPModel` of some of ``model``'s outputs (each output's process is its own).
+
+    Parameters
+    ----------
+    model : GPModel
+    columns : array_like of int
+        Output indices, in the order wanted.
+
+    Returns
+    -------
+    GPModel
+        Every per-output field sliced; the shared fields (normalisation, training states) kept.
+    """
+    c = np.asarray(columns, dtype=np.int64)
+    if c.ndim != 1 or c.size == 0 or c.min() < 0 or c.max() >= model.n_outputs:
+        raise ValueError(f"select_outputs: columns {c.tolist()} out of the model's {model.n_outputs} outputs")
+    return replace(
+        model,
+        length_scale=model.length_scale[c],
+        signal_var=model.signal_var[c],
+        noise_var=model.noise_var[c],
+        mean=model.mean[c],
+        weights=model.weights[:, c],
+        chol=model.chol[c],
+        log_output=model.log_output[c],
+        loo_error=model.loo_error[:, c],
+        loo_var=model.loo_var[:, c],
+        log_factor=model.log_factor[c],
+        slope=None if model.slope is None else model.slope[:, c],
+    )
 
 
 def chord_embed(points: npt.ArrayLike, space: Space) -> np.ndarray:

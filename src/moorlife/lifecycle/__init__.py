@@ -22,7 +22,8 @@ by the workflow scripts. Conventions:
 
 Modules: :mod:`~moorlife.lifecycle.settings` (``RBFSettings``, with ``GPSettings``), :mod:`~moorlife.lifecycle.outputs`
 (outputs <-> matrices), :mod:`~moorlife.lifecycle.spaces` (the candidate input spaces: the
-paper's 5-D space, or with the rotor thrust), :mod:`~moorlife.lifecycle.fit` (fit, with the
+paper's 5-D space, or with the rotor thrust), :mod:`~moorlife.lifecycle.turbulence` (the
+turbulent thrust, a thrust coordinate), :mod:`~moorlife.lifecycle.fit` (fit, with the
 global or per-output choice, prediction and validation metrics),
 :mod:`~moorlife.lifecycle.damage` (damage arithmetic), :mod:`~moorlife.lifecycle.uncertainty`,
 :mod:`~moorlife.lifecycle.adapters` (the xarray/pandas adapters) and
@@ -73,7 +74,15 @@ from moorlife.lifecycle.sensitivity import (
     seed_lives,
 )
 from moorlife.lifecycle.settings import GPBounds, GPSettings, RBFSettings, rbf_settings
-from moorlife.lifecycle.spaces import ThrustCurve, space_inputs, space_points, thrust_at, thrust_curve
+from moorlife.lifecycle.spaces import (
+    ThrustCurve,
+    TurbulentThrust,
+    space_inputs,
+    space_points,
+    thrust_at,
+    thrust_curve,
+    turbulent_thrust,
+)
 from moorlife.lifecycle.uncertainty import (
     band_sigma_of,
     calibrate_coverage,
@@ -103,6 +112,8 @@ __all__ = [
     "ThrustCurve",
     "thrust_curve",
     "thrust_at",
+    "turbulent_thrust",
+    "TurbulentThrust",
     "space_inputs",
     "space_points",
     "life_damage",

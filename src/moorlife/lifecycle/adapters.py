@@ -34,7 +34,7 @@ from moorlife.lifecycle.outputs import (
 )
 from moorlife.lifecycle.sensitivity import corrosion_evolution
 from moorlife.lifecycle.settings import RBFSettings
-from moorlife.lifecycle.spaces import ThrustCurve
+from moorlife.lifecycle.spaces import ThrustCoordinate
 from moorlife.lifecycle.uncertainty import band_sigma_of, error_indicator, life_band, suggest_states, sum_seed_cv
 
 __all__ = ["reconstruct_lifecycle", "discrete_damage_table", "summary_table"]
@@ -96,17 +96,36 @@ def _fit_vars(out: xr.Dataset, model: Reconstruction, x_train: np.ndarray, ids: 
     out["train_points"] = (("train", "metocean_var"), x_train, _a("training sea states (physical units)"))
     out["loo_error"] = (("train", "output"), model.loo_error, _a("leave-one-out residual per training state"))
     if model.method == "gp":
-        g = model.models[0]
-        variables = list(names.METOCEAN_VARS) + ([names.RBF_SPACE_THRUST] if g.space.scale.size > 5 else [])
-        out = out.assign_coords(gp_input=gp.embedded_names(variables, g.space.is_direction))
+        inputs, ls, sig, noise = _gp_records(model)
+        out = out.assign_coords(gp_input=inputs)
         out["gp_length_scale"] = (
             ("output", "gp_input"),
-            g.length_scale,
-            _a("GP length scale (normalised input units)"),
+            ls,
+            _a("GP length scale (normalised input units; NaN: not an input of the output's space)"),
         )
-        out["gp_signal_sd"] = ("output", np.sqrt(g.signal_var), _a("GP signal standard deviation (transformed units)"))
-        out["gp_noise_sd"] = ("output", np.sqrt(g.noise_var), _a("GP noise standard deviation (transformed units)"))
+        out["gp_signal_sd"] = ("output", sig, _a("GP signal standard deviation (transformed units)"))
+        out["gp_noise_sd"] = ("output", noise, _a("GP noise standard deviation (transformed units)"))
     return out
+
+
+def _gp_inputs(g: gp.GPModel) -> list[str]:
+    """The embedded input names of one GP (the thrust coordinate when its space has six)."""
+    variables = list(names.METOCEAN_VARS) + ([names.RBF_SPACE_THRUST] if g.space.scale.size > 5 else [])
+    return gp.embedded_names(variables, g.space.is_direction)
+
+
+def _gp_records(model: Reconstruction) -> tuple[list[str], np.ndarray, np.ndarray, np.ndarray]:
+    """Every output's GP length scales on the union of the inputs in use, signal and noise sd."""
+    own = [_gp_inputs(g) for g in model.models]
+    inputs = max(own, key=len)  # the thrust space's inputs hold the paper space's
+    n = model.n_outputs
+    ls = np.full((n, len(inputs)), np.nan)
+    sig, noise = np.empty(n), np.empty(n)
+    for g, cols, names_g in zip(model.models, model.columns, own):
+        where = [inputs.index(k) for k in names_g]
+        ls[np.ix_(cols, where)] = g.length_scale
+        sig[cols], noise[cols] = np.sqrt(g.signal_var), np.sqrt(g.noise_var)
+    return inputs, ls, sig, noise
 
 
 def _validation_vars(
@@ -179,7 +198,7 @@ def reconstruct_lifecycle(
     fatigue_cfg: Mapping[str, Any] | None = None,
     n_suggest: int = 50,
     compare_transforms: bool = True,
-    thrust: ThrustCurve | None = None,
+    thrust: ThrustCoordinate | None = None,
 ) -> xr.Dataset:
     """Rebuild every output for every hindcast hour, with validation and life damage.
 
@@ -232,12 +251,13 @@ def reconstruct_lifecycle(
     model = fit_outputs(x[train], y[train], cols, settings, lo=lo, span=span, thrust=thrust)
     labels = [_label(c) for c in cols]
     if model.method == "gp":
-        g = model.models[0]
+        inputs, ls_all, sig, noise = _gp_records(model)
         log.info(
-            "GP per output: length scales, signal sd, noise sd (transformed units):\n%s",
+            "GP per output: length scales on %s, signal sd, noise sd (transformed units):\n%s",
+            inputs,
             "\n".join(
-                f"  {lab:<18} {np.array2string(ls, precision=3)} {np.sqrt(sv):.4g} {np.sqrt(nv):.4g}"
-                for lab, ls, sv, nv in zip(labels, g.length_scale, g.signal_var, g.noise_var)
+                f"  {lab:<18} {np.array2string(ls, precision=3)} {sv:.4g} {nv:.4g}"
+                for lab, ls, sv, nv in zip(labels, ls_all, sig, noise)
             ),
         )
     log.info(
@@ -322,6 +342,13 @@ def reconstruct_lifecycle(
         out.attrs.update({"rbf_method": "gp", "gp_kernel": g.kernel, "gp_retransform": g.retransform})
         out.attrs.update({"gp_subsample": g.subsample, "gp_thrust": int(g.thrust), "gp_indicator": g.indicator})
         out.attrs.update({"gp_share": g.share, "gp_mean": g.mean, "gp_covariance": g.covariance})
+    if thrust is not None and settings.thrust_statistic != "steady":  # the steady curve's stores as they were
+        out.attrs.update(
+            {
+                "rbf_thrust_statistic": settings.thrust_statistic,
+                "rbf_thrust_averaging_s": settings.thrust_averaging_time,
+            }
+        )
     return out
 
 

@@ -22,9 +22,12 @@ outputs (:mod:`moorlife.rbf.transform`). The result is a :class:`Reconstruction`
 :class:`moorlife.rbf.RBFModel` per input space in use.
 
 ``lifecycle.rbf.method: gp`` replaces the RBF by a Gaussian process with a noise term per output
-(:mod:`moorlife.gp`, the settings of ``lifecycle.rbf.gp``), in the paper space or with the thrust
-(``gp.thrust``), the damage transformed by ``log_damage``: one :class:`moorlife.gp.GPModel` in
-the :class:`Reconstruction`, with its closed-form leave-one-out residuals in ``loo_error``.
+(:mod:`moorlife.gp`, the settings of ``lifecycle.rbf.gp``), the damage transformed by
+``log_damage``, with its closed-form leave-one-out residuals in ``loo_error``. ``global``: in the
+paper space or with the thrust (``gp.thrust``), one :class:`moorlife.gp.GPModel`.
+``per_output``: one GP per candidate space (``lifecycle.rbf.spaces``: ``paper``, ``thrust``), and
+each output keeps the one with the smaller leave-one-out RMS error in its own units: one
+:class:`moorlife.gp.GPModel` per space in use, each of its outputs.
 """
 
 from __future__ import annotations
@@ -39,7 +42,7 @@ import numpy.typing as npt
 from moorlife import gp, names, rbf
 from moorlife.lifecycle.outputs import _label
 from moorlife.lifecycle.settings import RBFSettings
-from moorlife.lifecycle.spaces import ThrustCurve, space_inputs, space_points, space_trend
+from moorlife.lifecycle.spaces import ThrustCoordinate, space_inputs, space_points, space_trend
 from moorlife.space import Space, embed, fit_space
 
 __all__ = ["Reconstruction", "validation_metrics", "fit_outputs", "predict_outputs", "loo_errors_in_units"]
@@ -96,8 +99,8 @@ class Reconstruction:
         The output columns of each model.
     spaces : tuple of str
         The input space of each model (``names.RBF_SPACES``).
-    thrust : ThrustCurve or None
-        The thrust curve of the ``"thrust"`` space.
+    thrust : ThrustCurve, TurbulentThrust or None
+        The thrust coordinate of the ``"thrust"`` space (:mod:`moorlife.lifecycle.spaces`).
     space : moorlife.space.Space
         The paper's 5-D normalisation, and ``centres`` the training states in it: the distances of
         the error indicator and of the adaptive suggestions (:mod:`moorlife.lifecycle.uncertainty`).
@@ -119,7 +122,7 @@ class Reconstruction:
     models: tuple[rbf.RBFModel, ...]
     columns: tuple[np.ndarray, ...]
     spaces: tuple[str, ...]
-    thrust: ThrustCurve | None
+    thrust: ThrustCoordinate | None
     space: Space
     centres: np.ndarray
     choose: str
@@ -147,7 +150,7 @@ def fit_outputs(
     lo: npt.ArrayLike | None = None,
     span: npt.ArrayLike | None = None,
     log_damage: bool | npt.ArrayLike | None = None,
-    thrust: ThrustCurve | None = None,
+    thrust: ThrustCoordinate | None = None,
 ) -> Reconstruction:
     """Fit the RBF of every output column with the configured choice (module docstring).
 
@@ -164,8 +167,8 @@ def fit_outputs(
         Forces the transform of the damage columns (one value, or one per damage column in
         order), overriding ``settings.log_damage`` and, with ``per_output``, the choice of
         their transform (used to compare both transforms).
-    thrust : ThrustCurve, optional
-        Required when ``per_output`` has the ``"thrust"`` space among its candidates.
+    thrust : ThrustCurve or TurbulentThrust, optional
+        Required when the ``"thrust"`` space is in use or among the candidates.
 
     Returns
     -------
@@ -236,15 +239,16 @@ def predict_outputs(model: Reconstruction, points: npt.ArrayLike, *, chunk_rows:
     numpy.ndarray, shape (n, n_out)
         Back-transformed (with the correction) for ``log10`` outputs.
     """
-    if model.method == "gp":
+    if model.method == "gp" and len(model.models) == 1:
         x = space_points(model.spaces[0], points, model.thrust)
         return gp.predict_gp(model.models[0], x, chunk_rows=chunk_rows)
     if len(model.models) == 1 and model.spaces[0] == names.RBF_SPACE_PAPER:
         return rbf.predict_rbf(model.models[0], points, chunk_rows=chunk_rows)
     x = np.asarray(points, dtype=float)
     out = np.empty((x.shape[0], model.n_outputs))
+    predict = gp.predict_gp if model.method == "gp" else rbf.predict_rbf
     for m, cols, name in zip(model.models, model.columns, model.spaces):
-        out[:, cols] = rbf.predict_rbf(m, space_points(name, x, model.thrust), chunk_rows=chunk_rows)
+        out[:, cols] = predict(m, space_points(name, x, model.thrust), chunk_rows=chunk_rows)
     return out
 
 
@@ -329,7 +333,7 @@ def _combine(
     models: Sequence[rbf.RBFModel],
     columns: Sequence[np.ndarray],
     spaces: Sequence[str],
-    thrust: ThrustCurve | None,
+    thrust: ThrustCoordinate | None,
     space: Space,
     centres: np.ndarray,
     choose: str,
@@ -376,7 +380,7 @@ def _fit_per_output(
     span: npt.ArrayLike | None,
     is_dmg: np.ndarray,
     forced: np.ndarray | None,
-    thrust: ThrustCurve | None,
+    thrust: ThrustCoordinate | None,
 ) -> Reconstruction:
     """``choose: per_output``: the leave-one-out choice per output, then one fit per space in use."""
     y = np.asarray(values, dtype=float)
@@ -466,16 +470,79 @@ def _fit_gp(
     span: npt.ArrayLike | None,
     is_dmg: np.ndarray,
     forced: np.ndarray | None,
-    thrust: ThrustCurve | None,
+    thrust: ThrustCoordinate | None,
 ) -> Reconstruction:
-    """``method: gp``: one Gaussian process per output (:func:`moorlife.gp.fit_gp`) in the paper or thrust space."""
+    """``method: gp``: one Gaussian process per output (:func:`moorlife.gp.fit_gp`).
+
+    ``choose: global``: in the paper or thrust space (``gp.thrust``). ``per_output``: one fit
+    per candidate of ``spaces``, and every output keeps the fit with the smallest closed-form
+    leave-one-out RMS error in its own units (the first candidate on a tie).
+    """
     g = settings.gp
     logs = np.zeros(len(cols), dtype=bool)
     logs[is_dmg] = bool(settings.log_damage) if forced is None else forced
     y = np.array(values, dtype=float)
     for j in np.flatnonzero(logs):
         y[:, j] = _floored(y[:, j], cols[j])
-    name = names.RBF_SPACE_THRUST if g.thrust else names.RBF_SPACE_PAPER
+    if settings.choose == "per_output":
+        candidates = tuple(settings.spaces)
+    else:
+        candidates = (names.RBF_SPACE_THRUST if g.thrust else names.RBF_SPACE_PAPER,)
+    fits = [_gp_in(name, points, y, cols, settings, lo, span, logs, thrust) for name in candidates]
+    rmse = np.array([r for _, r in fits])  # (candidates, n_out)
+    pick = np.argmin(rmse, axis=0)
+    if len(candidates) > 1:
+        log.info(
+            "GP space per output by leave-one-out RMS in units: %s",
+            {_label(c): candidates[int(k)] for c, k in zip(cols, pick)},
+        )
+    models, columns, used = [], [], []
+    for k in np.unique(pick):
+        c = np.flatnonzero(pick == k).astype(np.int64)
+        model = fits[int(k)][0]
+        models.append(model if c.size == len(cols) else gp.select_outputs(model, c))
+        columns.append(c)
+        used.append(candidates[int(k)])
+    n_out, m = len(cols), y.shape[0]
+    smoothing, factor, loo = np.empty(n_out), np.empty(n_out), np.empty((m, n_out))
+    for model, c in zip(models, columns):
+        smoothing[c] = model.noise_var / model.signal_var
+        factor[c] = model.log_factor
+        loo[:, c] = model.loo_error
+    space, centres = _paper_space(points, lo, span)
+    return Reconstruction(
+        models=tuple(models),
+        columns=tuple(columns),
+        spaces=tuple(used),
+        thrust=thrust,
+        space=space,
+        centres=centres,
+        choose=settings.choose,
+        input_space=np.array(candidates)[pick].astype(str),
+        shape=np.full(n_out, np.nan),
+        smoothing=smoothing,
+        log_factor=factor,
+        loo_rmse_units=rmse[pick, np.arange(n_out)],
+        log_output=logs,
+        loo_error=loo,
+        method="gp",
+        indicator=g.indicator,
+    )
+
+
+def _gp_in(
+    name: str,
+    points: np.ndarray,
+    y: np.ndarray,
+    cols: Sequence[tuple[str, str | None]],
+    settings: RBFSettings,
+    lo: npt.ArrayLike | None,
+    span: npt.ArrayLike | None,
+    logs: np.ndarray,
+    thrust: ThrustCoordinate | None,
+) -> tuple[gp.GPModel, np.ndarray]:
+    """The GP of every output in the space ``name``, and its leave-one-out RMS error in units."""
+    g = settings.gp
     x, mask, lo_s, span_s = space_inputs(name, points, lo, span, thrust)
     model = gp.fit_gp(
         x,
@@ -504,22 +571,4 @@ def _fit_gp(
         else:
             factor = model.log_factor[logs]
         e[:, logs] = y[:, logs] - factor * 10.0 ** (ly - model.loo_error[:, logs])
-    space, centres = _paper_space(points, lo, span)
-    return Reconstruction(
-        models=(model,),
-        columns=(np.arange(len(cols), dtype=np.int64),),
-        spaces=(name,),
-        thrust=thrust,
-        space=space,
-        centres=centres,
-        choose="global",
-        input_space=np.full(len(cols), name),
-        shape=np.full(len(cols), np.nan),
-        smoothing=model.noise_var / model.signal_var,
-        log_factor=model.log_factor.copy(),
-        loo_rmse_units=np.sqrt(np.mean(e * e, axis=0)),
-        log_output=logs,
-        loo_error=model.loo_error,
-        method="gp",
-        indicator=g.indicator,
-    )
+    return model, np.sqrt(np.mean(e * e, axis=0))

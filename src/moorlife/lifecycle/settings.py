@@ -122,7 +122,13 @@ class RBFSettings:
     space : str
         Input space of ``global`` (``names.RBF_SPACES``; ``"paper"``: the paper's method).
     spaces : tuple of str
-        Candidate input spaces of ``per_output`` (``names.RBF_SPACES``).
+        Candidate input spaces of ``per_output`` (``names.RBF_SPACES``; with ``method: gp``,
+        ``"paper"`` and ``"thrust"`` only).
+    thrust_statistic : {"steady", "turbulent_sd"}
+        The thrust coordinate of the ``"thrust"`` space: ``T(W)`` or the turbulent thrust
+        (:mod:`moorlife.lifecycle.turbulence`).
+    thrust_averaging_time : float
+        s, the hindcast's averaging time: the turbulence of ``turbulent_sd`` is above its inverse.
     weights : tuple of float
         Weight of each coordinate of the ``"weighted"`` space, ``names.METOCEAN_VARS`` order
         (1 on the directions).
@@ -156,6 +162,8 @@ class RBFSettings:
     choose: str
     space: str
     spaces: tuple[str, ...]
+    thrust_statistic: str
+    thrust_averaging_time: float
     weights: tuple[float, ...]
     trend_knots: tuple[float, ...]
     trend_harmonics: int
@@ -196,6 +204,8 @@ class RBFSettings:
             choose=str(s["choose"]),
             space=str(s["space"]),
             spaces=tuple(str(v) for v in s["spaces"]),
+            thrust_statistic=str(s["thrust"]["statistic"]),
+            thrust_averaging_time=float(s["thrust"]["averaging_time"]),
             weights=tuple(1.0 if v in names.DIRECTION_VARS else float(s["weights"][v]) for v in names.METOCEAN_VARS),
             trend_knots=tuple(float(v) for v in s["wind_trend"]["knots"]),
             trend_harmonics=int(s["wind_trend"]["harmonics"]),
@@ -211,8 +221,19 @@ class RBFSettings:
             raise ValueError(
                 f"{source}: lifecycle.rbf.space = {out.space!r} with method 'gp'; the GP's space is set by gp.thrust"
             )
-        if out.method == "gp" and out.choose != "global":
-            raise ValueError(f"{source}: lifecycle.rbf.method = 'gp' needs choose = 'global', got {out.choose!r}")
+        gp_spaces = (names.RBF_SPACE_PAPER, names.RBF_SPACE_THRUST)
+        if out.method == "gp" and out.choose == "per_output":
+            if out.gp.thrust:
+                raise ValueError(
+                    f"{source}: lifecycle.rbf.gp.thrust = true with choose = 'per_output'; "
+                    "the per-output choice takes its spaces from lifecycle.rbf.spaces"
+                )
+            bad = [v for v in out.spaces if v not in gp_spaces]
+            if bad:
+                raise ValueError(
+                    f"{source}: lifecycle.rbf.spaces = {list(out.spaces)} with method 'gp'; "
+                    f"the GP's candidates are {list(gp_spaces)}, not {bad}"
+                )
         g = out.gp
         if g.mean == "linear" and (g.retransform == "predictive" or g.indicator == "sd"):
             raise ValueError(

@@ -12,7 +12,9 @@
     (``[lo_W, lo_W + span_W]``, the hindcast's range when the selection's normalisation is
     used). The damage of the lines away from the waves peaks in a narrow band of wind speed
     just above rated, narrower than any useful shape parameter in ``W``; in ``T(W)`` that band
-    is the maximum of one coordinate.
+    is the maximum of one coordinate. With ``lifecycle.rbf.thrust.statistic: turbulent_sd`` the
+    coordinate is instead the turbulent thrust ``sigma_T(W)`` (:class:`TurbulentThrust`,
+    :mod:`moorlife.lifecycle.turbulence`), normalised the same way.
 ``"weighted"``
     The paper's 5-D space with each scalar coordinate (wind speed, Hs, Tp) multiplied by a
     weight (``lifecycle.rbf.weights``): ``w (x - lo) / span``, i.e. the span divided by the
@@ -29,16 +31,27 @@
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
 from moorlife import names, turbine
+from moorlife.lifecycle import turbulence
 from moorlife.rbf.trend import Trend
 from moorlife.space import direction_mask, scaling_from
 
-__all__ = ["ThrustCurve", "thrust_curve", "thrust_at", "space_inputs", "space_points", "space_trend"]
+__all__ = [
+    "ThrustCurve",
+    "TurbulentThrust",
+    "thrust_curve",
+    "turbulent_thrust",
+    "thrust_at",
+    "space_inputs",
+    "space_points",
+    "space_trend",
+]
 
 #: Wind-speed step (m/s) of the scan that finds the thrust range of a wind range.
 _SCAN_STEP = 0.01
@@ -94,8 +107,63 @@ def thrust_curve(platform_cfg: Mapping, source: str = "platform.yaml") -> Thrust
     )
 
 
-def thrust_at(curve: ThrustCurve, wind_speed: npt.ArrayLike) -> np.ndarray:
-    """Steady thrust ``T(W)`` (N) at hub wind speeds ``W`` (m/s)."""
+@dataclass(frozen=True)
+class TurbulentThrust:
+    """The turbulent thrust ``sigma_T(W)`` of a :class:`ThrustCurve`, tabulated (:func:`turbulent_thrust`).
+
+    Attributes
+    ----------
+    curve : ThrustCurve
+        The steady curve it was computed from (its knots enter the coordinate's range scan).
+    wind_speed, sd : numpy.ndarray, shape (n,)
+        Hub wind speeds (m/s, :data:`moorlife.lifecycle.turbulence.GRID`) and ``sigma_T`` there (N),
+        linearly interpolated between them.
+    """
+
+    curve: ThrustCurve
+    wind_speed: np.ndarray
+    sd: np.ndarray
+
+
+#: The thrust coordinate of the ``"thrust"`` space: the steady ``T(W)`` or the turbulent ``sigma_T(W)``.
+ThrustCoordinate = ThrustCurve | TurbulentThrust
+
+
+def turbulent_thrust(curve: ThrustCurve, wind_cfg: Mapping[str, Any], averaging_time: float) -> TurbulentThrust:
+    """The turbulent thrust of the operating rotor (:mod:`moorlife.lifecycle.turbulence`).
+
+    ``sigma_T(W)``, the sd of ``T(min(W, cut_out) + u)`` with ``T`` the operating rotor's curve
+    (``Ct`` held at its last tabulated value, no shutdown ramp) and ``u`` the turbulence of the
+    configured wind spectrum (at the hour's mean speed ``W``) between ``1 / averaging_time`` and
+    ``simulation.wind.f_max``. The shutdown's drop to zero thrust within ``shutdown_ramp`` would
+    put a spike of ``sigma_T`` at cut-out (174 kN at 25 m/s for the NREL 5 MW, against 65 kN at
+    most below) among the storm hours; the operating rotor has none.
+
+    Parameters
+    ----------
+    curve : ThrustCurve
+    wind_cfg : mapping
+        ``simulation.wind`` with the hub ``height`` (m).
+    averaging_time : float
+        s, the hindcast's averaging time (``lifecycle.rbf.thrust.averaging_time``).
+    """
+    su = turbulence.wind_sd(turbulence.GRID, wind_cfg, 1.0 / float(averaging_time), _f_max(wind_cfg))
+    operating = replace(curve, cut_out=1e3, shutdown_ramp=0.0)
+    sd = turbulence.thrust_sd(lambda v: thrust_at(operating, v), turbulence.GRID, su, cap=curve.cut_out)
+    return TurbulentThrust(curve=curve, wind_speed=turbulence.GRID.copy(), sd=sd)
+
+
+def _f_max(wind_cfg: Mapping[str, Any]) -> float:
+    """``simulation.wind.f_max`` (Hz), schema-filled (the section may carry the simulator's ``height``)."""
+    from moorlife.settings import WindSettings
+
+    return WindSettings.from_config({k: v for k, v in wind_cfg.items() if k != "height"}).f_max
+
+
+def thrust_at(curve: ThrustCoordinate, wind_speed: npt.ArrayLike) -> np.ndarray:
+    """The thrust coordinate (N) at hub wind speeds ``W`` (m/s): ``T(W)``, or ``sigma_T(W)`` when tabulated."""
+    if isinstance(curve, TurbulentThrust):
+        return np.interp(np.asarray(wind_speed, dtype=float), curve.wind_speed, curve.sd)
     return turbine.thrust(
         wind_speed,
         curve.wind_speed,
@@ -109,10 +177,11 @@ def thrust_at(curve: ThrustCurve, wind_speed: npt.ArrayLike) -> np.ndarray:
     )
 
 
-def _thrust_range(curve: ThrustCurve, w_lo: float, w_hi: float) -> tuple[float, float]:
-    """Minimum and range of ``T(W)`` for ``W`` in ``[w_lo, w_hi]`` (a 0.01 m/s scan plus the table nodes)."""
+def _thrust_range(curve: ThrustCoordinate, w_lo: float, w_hi: float) -> tuple[float, float]:
+    """Minimum and range of the coordinate for ``W`` in ``[w_lo, w_hi]`` (a 0.01 m/s scan plus the Ct table's nodes)."""
     n = max(2, int(np.ceil((w_hi - w_lo) / _SCAN_STEP)) + 1)
-    knots = [curve.wind_speed, [curve.cut_in, curve.cut_out, curve.cut_out + curve.shutdown_ramp]]
+    base = curve.curve if isinstance(curve, TurbulentThrust) else curve
+    knots = [base.wind_speed, [base.cut_in, base.cut_out, base.cut_out + base.shutdown_ramp]]
     w = np.concatenate([np.linspace(w_lo, w_hi, n), *knots])
     t = thrust_at(curve, w[(w >= w_lo) & (w <= w_hi)])
     lo = float(t.min())
@@ -120,7 +189,7 @@ def _thrust_range(curve: ThrustCurve, w_lo: float, w_hi: float) -> tuple[float, 
     return lo, span if span > 0 else 1.0
 
 
-def space_points(name: str, points: npt.ArrayLike, curve: ThrustCurve | None = None) -> np.ndarray:
+def space_points(name: str, points: npt.ArrayLike, curve: ThrustCoordinate | None = None) -> np.ndarray:
     """The coordinates of sea states ``points`` (n, 5) in the space ``name``, physical units.
 
     What a fitted model in that space is evaluated at (its normalisation, weights included, is
@@ -163,7 +232,7 @@ def space_inputs(
     points: npt.ArrayLike,
     lo: npt.ArrayLike | None,
     span: npt.ArrayLike | None,
-    curve: ThrustCurve | None = None,
+    curve: ThrustCoordinate | None = None,
     weights: npt.ArrayLike | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray | None]:
     """The inputs of an RBF in the candidate space ``name``.
@@ -175,8 +244,8 @@ def space_inputs(
         Sea states in ``names.METOCEAN_VARS`` order (physical units).
     lo, span : array_like (5,) or None
         The normalisation of the paper space (None: the fit's training points).
-    curve : ThrustCurve, optional
-        Required for ``"thrust"``.
+    curve : ThrustCurve or TurbulentThrust, optional
+        Required for ``"thrust"``: the steady thrust ``T(W)``, or the turbulent ``sigma_T(W)``.
     weights : array_like, shape (5,), optional
         Required for ``"weighted"``: the weight of each coordinate in ``names.METOCEAN_VARS``
         order (positive; those of the directions are ignored).

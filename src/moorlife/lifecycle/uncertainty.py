@@ -69,9 +69,12 @@ def error_indicator(
     s = np.asarray(scale, dtype=float)
     s = np.where(s > 0, s, 1.0)
     if getattr(model, "indicator", "loo") == "sd":
-        x = space_points(model.spaces[0], points, model.thrust)
-        _, var = gp.predict_latent(model.models[0], x, variance_of=np.ones(s.size, bool))
-        return np.max(np.sqrt(var) / s, axis=1), dist
+        worst = np.zeros(dist.shape)
+        for m, cols, name in zip(model.models, model.columns, model.spaces):
+            x = space_points(name, points, model.thrust)
+            _, var = gp.predict_latent(m, x, variance_of=np.ones(cols.size, bool))
+            worst = np.maximum(worst, np.max(np.sqrt(var) / s[cols], axis=1))
+        return worst, dist
     typical = _typical_spacing(model)
     e = np.asarray(model.loo_error if loo is None else loo, dtype=float)
     worst = np.max(np.abs(e) / s, axis=1)  # (m,)

@@ -129,12 +129,19 @@ def logged(log: str | os.PathLike[str] | None, name: str = "moorlife.stages") ->
         yield logging.getLogger(name)
 
 
-def thrust_for(settings: Any, platform_cfg: str | os.PathLike[str] | None) -> Any:
-    """The thrust curve of ``config/platform.yaml`` when the RBF fit may use the thrust space.
+def thrust_for(
+    settings: Any, platform_cfg: str | os.PathLike[str] | None, wind: Mapping[str, Any] | None = None
+) -> Any:
+    """The thrust coordinate of ``config/platform.yaml`` when the RBF fit may use the thrust space.
 
     ``settings`` is a :class:`moorlife.lifecycle.RBFSettings`; None unless ``choose`` is
     ``per_output`` with ``"thrust"`` among its ``spaces``, ``global`` with ``space`` ``"thrust"``,
-    or ``method`` is ``gp`` with ``gp.thrust`` (the lifecycle and rounds stages).
+    or ``method`` is ``gp`` with ``gp.thrust`` (the lifecycle, rounds and replicates stages).
+    The steady curve (:class:`moorlife.lifecycle.ThrustCurve`), or with
+    ``thrust.statistic: turbulent_sd`` its turbulent thrust
+    (:class:`moorlife.lifecycle.TurbulentThrust`), which needs ``wind``: the ``simulation.wind``
+    section (read from the config, not a rule parameter: a change of it reruns the simulations,
+    an input of every stage that fits).
     """
     from moorlife import lifecycle, names
     from moorlife.io.platform import read_platform_config
@@ -147,4 +154,13 @@ def thrust_for(settings: Any, platform_cfg: str | os.PathLike[str] | None) -> An
     if platform_cfg is None:
         key = "gp.thrust is true" if gp_thrust else ("spaces has" if per_output else "space is") + " 'thrust'"
         raise ValueError(f"lifecycle.rbf.{key}: the stage needs platform_cfg (config/platform.yaml)")
-    return lifecycle.thrust_curve(read_platform_config(platform_cfg), str(platform_cfg))
+    platform = read_platform_config(platform_cfg)
+    curve = lifecycle.thrust_curve(platform, str(platform_cfg))
+    if settings.thrust_statistic == "steady":
+        return curve
+    if wind is None:
+        raise ValueError(
+            f"lifecycle.rbf.thrust.statistic = {settings.thrust_statistic!r}: the stage needs simulation.wind"
+        )
+    height = float(platform["turbine"]["hub_height"])
+    return lifecycle.turbulent_thrust(curve, {**wind, "height": height}, settings.thrust_averaging_time)

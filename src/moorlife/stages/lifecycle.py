@@ -34,6 +34,7 @@ def run(
     lifecycle: Mapping[str, Any],
     fatigue: Mapping[str, Any],
     platform_cfg: PathLike | None = None,
+    wind: Mapping[str, Any] | None = None,
     rounds: Sequence[PathLike] = (),
     round_simulations: Sequence[PathLike] = (),
     replicates: Sequence[PathLike] = (),
@@ -57,6 +58,8 @@ def run(
     platform_cfg : path-like, optional
         ``config/platform.yaml``: the thrust curve of the ``thrust`` input space, read only
         when ``lifecycle.rbf.choose`` is ``per_output`` with that space among the candidates.
+    wind : mapping, optional
+        ``simulation.wind``, read only for ``lifecycle.rbf.thrust.statistic: turbulent_sd``.
     chunk_rows : int, optional
         Hindcast hours per RBF prediction block (``lifecycle.rbf.chunk_rows``, read from the
         config by the adapter: memory only, never the numbers). Default: the section's value.
@@ -75,7 +78,7 @@ def run(
         if chunk_rows is not None:
             rbf_cfg["chunk_rows"] = int(chunk_rows)
         settings = lc_mod.rbf_settings(rbf_cfg, source="config.yaml")
-        thrust = thrust_for(settings, platform_cfg)
+        thrust = thrust_for(settings, platform_cfg, wind)
         cs, sims = merged(cases, simulations, rounds, round_simulations)
         if replicates:
             sims = average_replicates(sims, [open_zarr(p) for p in replicates])

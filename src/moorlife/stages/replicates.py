@@ -39,6 +39,7 @@ def run(
     rounds: Sequence[PathLike] = (),
     round_simulations: Sequence[PathLike] = (),
     platform_cfg: PathLike | None = None,
+    wind: Mapping[str, Any] | None = None,
     log: PathLike | None = None,
 ) -> xr.Dataset:
     """The states to replicate -> ``results/{ms}/replicates/picks.zarr``.
@@ -57,6 +58,8 @@ def run(
         The picks and simulations of every adaptive round.
     platform_cfg : path-like, optional
         ``config/platform.yaml``, for the thrust space of ``lifecycle.rbf.choose: per_output``.
+    wind : mapping, optional
+        ``simulation.wind``, read only for ``lifecycle.rbf.thrust.statistic: turbulent_sd``.
     log : path-like, optional
         The rule's log file.
     """
@@ -70,7 +73,7 @@ def run(
             settings=settings,
             n=int(states),
             seeds=int(seeds),
-            thrust=thrust_for(settings, platform_cfg),
+            thrust=thrust_for(settings, platform_cfg, wind),
         )
         logger.info(
             "replicated cases %s (hindcast hours %s)", ds["case"].values.tolist(), ds["hindcast_index"].values.tolist()

@@ -63,6 +63,7 @@ def run(
     rounds: Sequence[PathLike] = (),
     round_simulations: Sequence[PathLike] = (),
     platform_cfg: PathLike | None = None,
+    wind: Mapping[str, Any] | None = None,
     log: PathLike | None = None,
 ) -> xr.Dataset:
     """The sea states of adaptive round ``number`` -> ``results/{ms}/rounds/picks_{number}.zarr``.
@@ -83,6 +84,8 @@ def run(
         The picks and simulations of rounds ``1 .. number - 1``.
     platform_cfg : path-like, optional
         ``config/platform.yaml``, for the thrust space of ``lifecycle.rbf.choose: per_output``.
+    wind : mapping, optional
+        ``simulation.wind``, read only for ``lifecycle.rbf.thrust.statistic: turbulent_sd``.
     log : path-like, optional
         The rule's log file.
     """
@@ -100,7 +103,7 @@ def run(
             settings=settings,
             n=int(per_round),
             number=int(number),
-            thrust=thrust_for(settings, platform_cfg),
+            thrust=thrust_for(settings, platform_cfg, wind),
         )
         logger.info("round %d: hindcast hours %s", int(number), ds["hindcast_index"].values.tolist())
         write_zarr(ds, store)
