@@ -915,3 +915,18 @@ def test_thrust_for_builds_the_turbulent_thrust_from_the_wind_section():
     assert isinstance(steady, lifecycle.ThrustCurve)
     with pytest.raises(ConfigError, match="statistic"):
         lifecycle.RBFSettings.from_config({"thrust": {"statistic": "mean"}})
+
+
+def test_turbulent_thrust_settings_are_checked_before_any_job(tiny_config):
+    from moorlife.config import check_cross_keys
+
+    cfg = tiny_config
+    cfg["lifecycle"]["rbf"]["thrust"] = {"statistic": "turbulent_sd", "averaging_time": 3600.0}
+    check_cross_keys(cfg, "tiny.yaml")
+    cfg["simulation"]["wind"]["spectrum"] = "none"
+    with pytest.raises(ConfigError, match="tiny.yaml: .*'turbulent_sd' needs a turbulent wind.*'none'"):
+        check_cross_keys(cfg, "tiny.yaml")
+    cfg["simulation"]["wind"]["spectrum"] = "npd"
+    cfg["lifecycle"]["rbf"]["thrust"]["averaging_time"] = 0.5
+    with pytest.raises(ConfigError, match=r"'lifecycle.rbf.thrust.averaging_time' = 0.5 s .*f_max' = 1.0 Hz"):
+        check_cross_keys(cfg, "tiny.yaml")

@@ -154,6 +154,9 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
       training simulations, of which maximum dissimilarity picks the rest), and so is that plus
       ``lifecycle.replicates.states`` x ``seeds``; replicates need ``damage_sn`` among
       ``lifecycle.rbf.outputs`` (their ranking).
+    * ``lifecycle.rbf.thrust.statistic: turbulent_sd`` has a turbulent wind
+      (``simulation.wind.spectrum`` not ``none``) above ``1 / lifecycle.rbf.thrust.averaging_time``
+      and below ``simulation.wind.f_max``.
     * ``simulation.dt`` resolves the shortest wave period ``2 pi / hydro.omega.max`` with
       :data:`STEPS_PER_PERIOD` steps; ``simulation.kinematics_dt``, as the simulator rounds it
       (to a whole number of steps, at least one), samples that period
@@ -220,6 +223,19 @@ def check_cross_keys(cfg: Mapping[str, Any], source: str = "config") -> None:
             fail(
                 f"config key 'lifecycle.replicates.states' = {rs} exceeds the {n_mda + adaptive} "
                 "training states there are to replicate"
+            )
+    if _get(cfg, "lifecycle.rbf.thrust.statistic") == "turbulent_sd":
+        spectrum, f_max = _get(cfg, "simulation.wind.spectrum"), _get(cfg, "simulation.wind.f_max")
+        t_avg = _get(cfg, "lifecycle.rbf.thrust.averaging_time")
+        if spectrum == "none":
+            fail(
+                "config key 'lifecycle.rbf.thrust.statistic' = 'turbulent_sd' needs a turbulent wind, but "
+                "'simulation.wind.spectrum' = 'none' (a steady wind: the coordinate would be zero everywhere)"
+            )
+        if isinstance(t_avg, (int, float)) and isinstance(f_max, (int, float)) and 1.0 / t_avg >= f_max:
+            fail(
+                f"config key 'lifecycle.rbf.thrust.averaging_time' = {t_avg} s leaves no turbulence below "
+                f"'simulation.wind.f_max' = {f_max} Hz (1 / averaging_time must be below f_max)"
             )
     if _get(cfg, "hindcast.source") == "file" and not _get(cfg, "hindcast.path"):
         fail("config key 'hindcast.path' = None: a path is required when 'hindcast.source' is 'file'")

@@ -40,6 +40,7 @@ import numpy.typing as npt
 from moorlife import names, turbine
 from moorlife.lifecycle import turbulence
 from moorlife.rbf.trend import Trend
+from moorlife.settings import WindSettings
 from moorlife.space import direction_mask, scaling_from
 
 __all__ = [
@@ -155,8 +156,6 @@ def turbulent_thrust(curve: ThrustCurve, wind_cfg: Mapping[str, Any], averaging_
 
 def _f_max(wind_cfg: Mapping[str, Any]) -> float:
     """``simulation.wind.f_max`` (Hz), schema-filled (the section may carry the simulator's ``height``)."""
-    from moorlife.settings import WindSettings
-
     return WindSettings.from_config({k: v for k, v in wind_cfg.items() if k != "height"}).f_max
 
 
