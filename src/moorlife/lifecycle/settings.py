@@ -118,7 +118,8 @@ class RBFSettings:
     choose : {"global", "per_output"}
         ``global``: the paper's 5-D space for every output, damage by ``log_damage``;
         ``per_output``: space, transform, ``q0`` and smoothing per output by the leave-one-out
-        error in the output's units (:func:`moorlife.rbf.choose_per_output`).
+        error in the output's units (:func:`moorlife.rbf.choose_per_output`); with ``method:
+        gp``, the space only (one GP per candidate, :func:`moorlife.lifecycle.fit_outputs`).
     space : str
         Input space of ``global`` (``names.RBF_SPACES``; ``"paper"``: the paper's method).
     spaces : tuple of str
