@@ -48,6 +48,7 @@ __all__ = [
     "npd_spectrum",
     "kaimal_spectrum",
     "wind_spectrum",
+    "wind_settings",
     "record_grid",
     "RecordGrid",
     "wave_components",
@@ -217,7 +218,7 @@ def kaimal_spectrum(
     return sigma**2 * 4.0 * tl / (1.0 + 6.0 * f * tl) ** (5.0 / 3.0)
 
 
-def _wind_settings(cfg: Mapping[str, Any]) -> WindSettings:
+def wind_settings(cfg: Mapping[str, Any]) -> WindSettings:
     """The ``simulation.wind`` section (without the ``height`` the simulator adds), schema-filled."""
     return WindSettings.from_config({k: v for k, v in cfg.items() if k != "height"}, source="config.yaml")
 
@@ -232,7 +233,7 @@ def wind_spectrum(f: npt.ArrayLike, u_hub: npt.ArrayLike, cfg: dict) -> np.ndarr
     numpy.ndarray, shape (..., nf)
         m2 s-2 Hz-1; zero everywhere when ``cfg["spectrum"] == "none"`` (steady wind).
     """
-    w = _wind_settings(cfg)
+    w = wind_settings(cfg)
     kind = w.spectrum
     if kind == "npd":
         if "height" not in cfg:
@@ -404,7 +405,7 @@ def wind_series(grid: RecordGrid, u_hub: npt.ArrayLike, phases: np.ndarray, cfg:
     u = np.atleast_1d(np.asarray(u_hub, dtype=float))
     w = grid.omega
     f = w / (2.0 * np.pi)
-    keep = np.flatnonzero((f > 0) & (f <= _wind_settings(cfg).f_max))
+    keep = np.flatnonzero((f > 0) & (f <= wind_settings(cfg).f_max))
     s_f = wind_spectrum(f[keep], u, cfg)  # per Hz
     amp = np.sqrt(2.0 * s_f * (grid.d_omega / (2.0 * np.pi))) * np.exp(1j * phases[:, keep])
     return u[:, None] + synthesise(amp, keep, grid)

@@ -239,10 +239,7 @@ def predict_outputs(model: Reconstruction, points: npt.ArrayLike, *, chunk_rows:
     numpy.ndarray, shape (n, n_out)
         Back-transformed (with the correction) for ``log10`` outputs.
     """
-    if model.method == "gp" and len(model.models) == 1:
-        x = space_points(model.spaces[0], points, model.thrust)
-        return gp.predict_gp(model.models[0], x, chunk_rows=chunk_rows)
-    if len(model.models) == 1 and model.spaces[0] == names.RBF_SPACE_PAPER:
+    if model.method == "rbf" and len(model.models) == 1 and model.spaces[0] == names.RBF_SPACE_PAPER:
         return rbf.predict_rbf(model.models[0], points, chunk_rows=chunk_rows)
     x = np.asarray(points, dtype=float)
     out = np.empty((x.shape[0], model.n_outputs))

@@ -37,10 +37,9 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from moorlife import names, turbine
+from moorlife import environment, names, turbine
 from moorlife.lifecycle import turbulence
 from moorlife.rbf.trend import Trend
-from moorlife.settings import WindSettings
 from moorlife.space import direction_mask, scaling_from
 
 __all__ = [
@@ -148,15 +147,11 @@ def turbulent_thrust(curve: ThrustCurve, wind_cfg: Mapping[str, Any], averaging_
     averaging_time : float
         s, the hindcast's averaging time (``lifecycle.rbf.thrust.averaging_time``).
     """
-    su = turbulence.wind_sd(turbulence.GRID, wind_cfg, 1.0 / float(averaging_time), _f_max(wind_cfg))
+    f_max = environment.wind_settings(wind_cfg).f_max
+    su = turbulence.wind_sd(turbulence.GRID, wind_cfg, 1.0 / float(averaging_time), f_max)
     operating = replace(curve, cut_out=1e3, shutdown_ramp=0.0)
     sd = turbulence.thrust_sd(lambda v: thrust_at(operating, v), turbulence.GRID, su, cap=curve.cut_out)
     return TurbulentThrust(curve=curve, wind_speed=turbulence.GRID.copy(), sd=sd)
-
-
-def _f_max(wind_cfg: Mapping[str, Any]) -> float:
-    """``simulation.wind.f_max`` (Hz), schema-filled (the section may carry the simulator's ``height``)."""
-    return WindSettings.from_config({k: v for k, v in wind_cfg.items() if k != "height"}).f_max
 
 
 def thrust_at(curve: ThrustCoordinate, wind_speed: npt.ArrayLike) -> np.ndarray:
