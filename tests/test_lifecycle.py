@@ -515,13 +515,22 @@ def _ridge_outputs(cases: xr.Dataset, curve: lifecycle.ThrustCurve) -> np.ndarra
     return np.column_stack([ridge, smooth])
 
 
-def test_per_output_choice_takes_the_thrust_space_for_a_thrust_ridge_only():
+def _ridge_training():
+    """150 training and 30 validation states of :func:`_ridge_outputs`: curve, points, values, train mask, columns."""
     curve = _thrust_curve()
-    hc = _hindcast(3000, seed=21)
-    cases = _cases(hc, 150, 30, seed=22)
-    x, y = lifecycle._points(cases, "case"), _ridge_outputs(cases, curve)
+    cases = _cases(_hindcast(3000, seed=21), 150, 30, seed=22)
     tr = cases["role"].values == "train"
-    cols = [("damage_sn", "M1"), ("surge_mpm", None)]
+    return (
+        curve,
+        lifecycle._points(cases, "case"),
+        _ridge_outputs(cases, curve),
+        tr,
+        [("damage_sn", "M1"), ("surge_mpm", None)],
+    )
+
+
+def test_per_output_choice_takes_the_thrust_space_for_a_thrust_ridge_only():
+    curve, x, y, tr, cols = _ridge_training()
     settings = lifecycle.RBFSettings.from_config(PER_OUTPUT)
     model = lifecycle.fit_outputs(x[tr], y[tr], cols, settings, thrust=curve)
     np.testing.assert_array_equal(model.input_space, ["thrust", "paper"])
@@ -786,12 +795,7 @@ def test_gp_sd_indicator_is_the_largest_latent_sd_over_the_scale():
 
 def test_gp_per_output_choice_takes_the_thrust_space_for_a_thrust_ridge():
     """method: gp, choose: per_output: one GP per space, each output keeps the smaller leave-one-out."""
-    curve = _thrust_curve()
-    hc = _hindcast(3000, seed=21)
-    cases = _cases(hc, 150, 30, seed=22)
-    x, y = lifecycle._points(cases, "case"), _ridge_outputs(cases, curve)
-    tr = cases["role"].values == "train"
-    cols = [("damage_sn", "M1"), ("surge_mpm", None)]
+    curve, x, y, tr, cols = _ridge_training()
     gp_cfg = {"subsample": 0, "covariance": "matern52", "indicator": "sd"}
     per = lifecycle.RBFSettings.from_config({**GP, "choose": "per_output", "gp": gp_cfg})
     model = lifecycle.fit_outputs(x[tr], y[tr], cols, per, thrust=curve)

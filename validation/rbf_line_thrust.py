@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -64,15 +63,12 @@ def patch(bearing: float, fold: bool = False) -> None:
 
 
 if __name__ == "__main__":
-    argv = sys.argv[1:]
-    rest = argv[argv.index("--") + 1 :] if "--" in argv else []
-    mine = argv[: argv.index("--")] if "--" in argv else argv
+    import reconstruction  # beside this script: sys.path[0]
+
+    mine, rest = reconstruction.split_argv(sys.argv[1:])
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("bearing", type=float, help="the line's bearing, deg clockwise from north, platform to anchor")
     p.add_argument("--fold", action="store_true", help="|cos|: the up- and downwind sides together")
     a = p.parse_args(mine)
     patch(a.bearing, a.fold)
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
-    import reconstruction
-
     sys.exit(reconstruction.main(rest))

@@ -101,15 +101,13 @@ def patch(mode: str, f_min: float | None, f_max: float | None) -> None:
 
 
 if __name__ == "__main__":
-    argv = sys.argv[1:]
-    rest = argv[argv.index("--") + 1 :] if "--" in argv else []
-    mine = argv[: argv.index("--")] if "--" in argv else argv
+    import reconstruction  # beside this script: sys.path[0]
+
+    mine, rest = reconstruction.split_argv(sys.argv[1:])
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("mode", choices=["full", "operating"])
     p.add_argument("--f-min", type=float, default=None, help="Hz (default 1/3600)")
     p.add_argument("--f-max", type=float, default=None, help="Hz (default simulation.wind.f_max)")
     a = p.parse_args(mine)
     patch(a.mode, a.f_min, a.f_max)
-    import reconstruction
-
     sys.exit(reconstruction.main(rest))

@@ -414,6 +414,14 @@ def report(res: dict[tuple[str, str], dict[str, Any]], variants: list[str]) -> s
     return "\n".join(lines)
 
 
+def split_argv(argv: list[str]) -> tuple[list[str], list[str]]:
+    """A wrapper script's own arguments and this harness's, split at the first ``--`` (none: all its own)."""
+    if "--" not in argv:
+        return list(argv), []
+    i = argv.index("--")
+    return argv[:i], argv[i + 1 :]
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--results", type=Path, default=ROOT / "results")
