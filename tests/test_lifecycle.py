@@ -828,6 +828,27 @@ def test_gp_per_output_choice_takes_the_thrust_space_for_a_thrust_ridge():
     )
 
 
+def test_gp_per_output_choice_never_picks_a_nan_leave_one_out(monkeypatch):
+    """A candidate whose leave-one-out RMS is NaN loses to a finite one; no finite RMS stops the fit, named."""
+    curve, x, y, tr, cols = _ridge_training()
+    per = lifecycle.RBFSettings.from_config({**GP, "choose": "per_output", "gp": {"subsample": 0}})
+    real = lifecycle.fit._gp_in
+
+    def nan_in(which):
+        def fake(name, *a, **k):
+            model, rmse = real(name, *a, **k)
+            return model, np.where(np.isin(np.arange(rmse.size), which) & (name == "thrust"), np.nan, rmse)
+
+        return fake
+
+    monkeypatch.setattr(lifecycle.fit, "_gp_in", nan_in([0]))  # the thrust space wins output 0 when finite
+    model = lifecycle.fit_outputs(x[tr], y[tr], cols, per, thrust=curve)
+    assert model.input_space[0] == "paper" and np.isfinite(model.loo_rmse_units).all()
+    monkeypatch.setattr(lifecycle.fit, "_gp_in", lambda name, *a, **k: (real(name, *a, **k)[0], np.full(2, np.nan)))
+    with pytest.raises(ValueError, match=r"output damage_sn/M1 has no finite leave-one-out RMS .*paper.*thrust"):
+        lifecycle.fit_outputs(x[tr], y[tr], cols, per, thrust=curve)
+
+
 def test_gp_per_output_choice_with_outputs_in_both_spaces():
     """Outputs split between the spaces: the prediction, the records and the sd indicator per model."""
     curve = _thrust_curve()

@@ -487,7 +487,7 @@ def _fit_gp(
         candidates = (names.RBF_SPACE_THRUST if g.thrust else names.RBF_SPACE_PAPER,)
     fits = [_gp_in(name, points, y, cols, settings, lo, span, logs, thrust) for name in candidates]
     rmse = np.array([r for _, r in fits])  # (candidates, n_out)
-    pick = np.argmin(rmse, axis=0)
+    pick = _pick_finite(rmse, cols, candidates)
     if len(candidates) > 1:
         log.info(
             "GP space per output by leave-one-out RMS in units: %s",
@@ -525,6 +525,22 @@ def _fit_gp(
         method="gp",
         indicator=g.indicator,
     )
+
+
+def _pick_finite(rmse: np.ndarray, cols: Sequence[tuple[str, str | None]], candidates: Sequence[str]) -> np.ndarray:
+    """Per output, the candidate with the smallest finite leave-one-out RMS (the first on a tie).
+
+    ``np.argmin`` would pick a NaN (it propagates through the minimum); a candidate whose RMS is
+    not finite is never picked, and an output with no finite RMS stops the fit, named.
+    """
+    bad = ~np.isfinite(rmse).any(axis=0)
+    if bad.any():
+        j = int(np.flatnonzero(bad)[0])
+        raise ValueError(
+            f"lifecycle.rbf.choose = 'per_output': output {_label(cols[j])} has no finite leave-one-out "
+            f"RMS in any space of {list(candidates)} (got {rmse[:, j].tolist()})"
+        )
+    return np.argmin(np.where(np.isfinite(rmse), rmse, np.inf), axis=0)
 
 
 def _gp_in(
