@@ -20,13 +20,16 @@ the scalars scaled by their training range, the values standardised:
   on every coordinate, plus a white noise; back-transformed by ``max(., 0)^(m/2)``;
 - ``pow_addT``: as ``pow_add``, the wind part also sees the steady rotor thrust ``T(W)``
   (``config/platform.yaml``'s curve).
+- ``log_add``: ``log10 D`` with the kernel of ``pow_add``.
 
 Printed per system, line and variant: the validation r (the 225 validation states against their
 one record, as ``lifecycle.validation_metrics``), the closed-form leave-one-out RMS error in the
 damage's units (the training states only: the criterion of a per-output choice), the CPU time of
 the fit, and where
 ``results/{ms}/truth.zarr`` exists, the per-hour r of the truth window and its damage sum
-against the truth's (%).
+against the truth's (%), and the storm hours' part (``Hs >= --storm-hs``): their number, their
+share of the squared error, their reconstructed sum over the truth's, and the per-hour r of the
+other hours.
 """
 
 from __future__ import annotations
@@ -95,7 +98,7 @@ def kernel(kind: str):
 
     full = C(1.0, (1e-3, 1e3)) * _projected(list(range(7)))
     noise = WhiteKernel(0.01, (1e-6, 1.0))
-    wind = {"log": None, "pow_add": [0, 1, 2], "pow_addT": [0, 1, 2, 7]}[kind]
+    wind = {"log": None, "log_add": [0, 1, 2], "pow_add": [0, 1, 2], "pow_addT": [0, 1, 2, 7]}[kind]
     return full + noise if wind is None else C(1.0, (1e-3, 1e3)) * _projected(wind) + full + noise
 
 
@@ -143,6 +146,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--systems", nargs="+", default=["MS1", "MS2", "MS3"])
     p.add_argument("--lines", nargs="+", default=["M1", "M2", "M3"])
     p.add_argument("--variants", nargs="+", default=["log", "pow_add", "pow_addT"])
+    p.add_argument("--storm-hs", type=float, default=5.0, help="Hs (m) of the truth's storm hours (default 5)")
     p.add_argument(
         "--scans",
         type=Path,
@@ -154,8 +158,12 @@ def main(argv: list[str] | None = None) -> int:
     cfg = rec.study([])
     platform = rec.ROOT / cfg["platform"]
     curve = lifecycle.thrust_curve(read_platform_config(platform), str(platform))
-    print("| system | line | variant | validation r | leave-one-out RMS | fit CPU-s | truth per-hour r | truth sum % |")
-    print("|---|---|---|---|---|---|---|---|")
+    print(
+        "| system | line | variant | validation r | leave-one-out RMS | fit CPU-s | truth per-hour r | truth sum % "
+        f"| storm hours (Hs >= {a.storm_hs} m) | their share of the squared error | their sum / truth's "
+        "| per-hour r without them |"
+    )
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for ms in a.systems:
         st = rec.load(a.results, ms)
         if st is None:
@@ -178,7 +186,7 @@ def main(argv: list[str] | None = None) -> int:
         for line in a.lines:
             y = st["sims"]["damage_sn"].sel(line=line).values.astype(float)
             for v in a.variants:
-                if v == "log":
+                if v.startswith("log"):
                     z = np.log10(np.maximum(y, 0.1 * y[y > 0].min()))
                     back = lambda q: 10.0**q  # noqa: E731
                 else:
@@ -191,11 +199,17 @@ def main(argv: list[str] | None = None) -> int:
                 cpu = time.process_time() - t0
                 r = np.corrcoef(back(g.predict(f[va]) * sd + mu), y[va])[0, 1]
                 loo = _loo_rms(g, f[tr], (z[tr] - mu) / sd, lambda q: back(q * sd + mu), y[tr])  # noqa: B023
-                truth = " | "
+                truth = " | " * 5
                 if hours is not None:
                     t = st["truth"]["damage_sn"].sel(line=line).values
                     q = back(g.predict(hours) * sd + mu)
-                    truth = f"{np.corrcoef(q, t)[0, 1]:.4f} | {100 * (q.sum() / t.sum() - 1):+.1f}"
+                    storm = st["truth"]["hs"].values >= a.storm_hs
+                    e2 = (q - t) ** 2
+                    truth = (
+                        f"{np.corrcoef(q, t)[0, 1]:.4f} | {100 * (q.sum() / t.sum() - 1):+.1f} | "
+                        f"{int(storm.sum())} | {e2[storm].sum() / e2.sum():.2f} | "
+                        f"{q[storm].sum() / t[storm].sum():.3f} | {np.corrcoef(q[~storm], t[~storm])[0, 1]:.4f}"
+                    )
                 print(f"| {ms} | {line} | {v} | {r:.4f} | {loo:.3e} | {cpu:.1f} | {truth} |", flush=True)
                 if scan is not None and line == a.lines[0]:
                     scan[2][v] = back(g.predict(scan[1]) * sd + mu)
