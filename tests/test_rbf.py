@@ -263,6 +263,15 @@ def test_bad_input_errors_name_the_problem():
         rbf.choose_shapes(rbf.LOOCurve(np.array([1.0, 2.0]), np.full((2, 1), np.inf), np.zeros(2)))
 
 
+def test_choose_candidates_never_picks_a_nan_and_refuses_an_output_without_a_finite_one():
+    """A NaN leave-one-out RMS loses to any finite one (np.min would propagate it, and the cover never end)."""
+    rms = np.array([[np.nan, 1.0, 2.0], [3.0, np.nan, 1.0], [4.0, 2.0, np.inf]])
+    for tol in (0.0, 0.5):
+        np.testing.assert_array_equal(rbf.choose_candidates(rms, tol), [1, 0, 1])
+    with pytest.raises(ValueError, match="output 1: no candidate has a finite leave-one-out RMS"):
+        rbf.choose_candidates(np.array([[1.0, np.nan], [2.0, np.inf]]))
+
+
 @pytest.mark.parametrize("smoothing", [0.0, 0.03])
 def test_loo_residuals_equal_rippa_on_the_block_inverse(smoothing):
     x = _sea_states(90, seed=21)

@@ -206,8 +206,8 @@ def choose_candidates(rms: np.ndarray, share_tol: float = 0.0) -> np.ndarray:
     Parameters
     ----------
     rms : numpy.ndarray, shape (c, n_out)
-        Leave-one-out RMS per candidate (rows in order of preference on ties) and output;
-        every output has at least one finite entry.
+        Leave-one-out RMS per candidate (rows in order of preference on ties) and output. A
+        non-finite entry (an unusable candidate, ``inf`` or NaN) is never chosen.
     share_tol : float
         See :func:`choose_shapes`: a greedy cover picks as few distinct candidates as possible
         among those within ``(1 + share_tol)`` of each output's minimum.
@@ -215,7 +215,17 @@ def choose_candidates(rms: np.ndarray, share_tol: float = 0.0) -> np.ndarray:
     Returns
     -------
     numpy.ndarray of int, shape (n_out,)
+
+    Raises
+    ------
+    ValueError
+        If an output has no finite entry (the callers name the grid first).
     """
+    # a NaN would propagate through the minimum, match no candidate, and the cover never end
+    rms = np.where(np.isfinite(rms), rms, np.inf)
+    if np.isinf(rms).all(axis=0).any():
+        bad = int(np.flatnonzero(np.isinf(rms).all(axis=0))[0])
+        raise ValueError(f"output {bad}: no candidate has a finite leave-one-out RMS")
     best = np.min(rms, axis=0)
     ok = rms <= best * (1.0 + share_tol) if share_tol > 0 else rms == best
     chosen: list[int] = []
