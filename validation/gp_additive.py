@@ -42,6 +42,10 @@ from pathlib import Path
 
 import numpy as np
 
+from moorlife import names
+from moorlife.gp import chord_embed, embedded_names
+from moorlife.space import Space, direction_mask, fit_space
+
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import reconstruction as rec  # noqa: E402
 
@@ -92,24 +96,30 @@ def _projected(cols: list[int]):
     return Projected(Matern(length_scale=np.full(len(cols), 0.3), length_scale_bounds=(1e-2, 1e2), nu=2.5), cols)
 
 
+#: The embedded coordinates (``moorlife.gp.chord_embed``'s order) of the wind-only term, then
+#: the steady thrust, appended last by :func:`features`.
+WIND = ("wind_speed", "cos_wind_dir", "sin_wind_dir")
+COLUMNS = (*embedded_names(names.METOCEAN_VARS, direction_mask()), "thrust")
+
+
 def kernel(kind: str):
     from sklearn.gaussian_process.kernels import ConstantKernel as C
     from sklearn.gaussian_process.kernels import WhiteKernel
 
-    full = C(1.0, (1e-3, 1e3)) * _projected(list(range(7)))
+    full = C(1.0, (1e-3, 1e3)) * _projected(list(range(len(COLUMNS) - 1)))
     noise = WhiteKernel(0.01, (1e-6, 1.0))
-    wind = {"log": None, "log_add": [0, 1, 2], "pow_add": [0, 1, 2], "pow_addT": [0, 1, 2, 7]}[kind]
-    return full + noise if wind is None else C(1.0, (1e-3, 1e3)) * _projected(wind) + full + noise
+    wind = {"log": None, "log_add": WIND, "pow_add": WIND, "pow_addT": (*WIND, "thrust")}[kind]
+    if wind is None:
+        return full + noise
+    return C(1.0, (1e-3, 1e3)) * _projected([COLUMNS.index(c) for c in wind]) + full + noise
 
 
-def features(x: np.ndarray, lo: np.ndarray, span: np.ndarray, thrust: np.ndarray) -> np.ndarray:
-    """wind speed, wind direction (2), Hs, Tp, wave direction (2), T(W): the directions on a circle of
-    radius 1/pi (a half turn is 1, as in the normalised space), the scalars by the training range."""
-    a, b = np.radians(x[:, 1]), np.radians(x[:, 4])
-    s = (x - lo) / span
-    return np.column_stack(
-        [s[:, 0], np.cos(a) / np.pi, np.sin(a) / np.pi, s[:, 2], s[:, 3], np.cos(b) / np.pi, np.sin(b) / np.pi, thrust]
-    )
+def features(points: np.ndarray, space: Space, curve, t_scale: float) -> np.ndarray:
+    """The GP's embedding of the package (:func:`moorlife.gp.chord_embed`: the scalars by the
+    training range, each direction on a circle of radius 1/pi), then ``T(W) / t_scale``."""
+    from moorlife import lifecycle
+
+    return np.column_stack([chord_embed(points, space), lifecycle.thrust_at(curve, points[:, 0]) / t_scale])
 
 
 def _loo_rms(g, f: np.ndarray, zs: np.ndarray, back, y: np.ndarray) -> float:
@@ -172,17 +182,16 @@ def main(argv: list[str] | None = None) -> int:
         role = st["cases"]["role"].values.astype(object).astype(str)
         tr, va = role == "train", role == "validate"
         x = lifecycle._points(st["cases"], "case")
-        lo, span = x[tr].min(axis=0), np.ptp(x[tr], axis=0)
+        space = fit_space(x[tr], direction_mask())
         t_scale = np.ptp(lifecycle.thrust_at(curve, x[tr, 0]))
-        f = features(x, lo, span, lifecycle.thrust_at(curve, x[:, 0]) / t_scale)
+        f = features(x, space, curve, t_scale)
         hours, scan = None, None
         if a.scans is not None and ms == a.systems[0]:
             xs = lifecycle._points(rec._open(a.scans / "cases.zarr"), "case")
-            scan = (xs, features(xs, lo, span, lifecycle.thrust_at(curve, xs[:, 0]) / t_scale), {})
+            scan = (xs, features(xs, space, curve, t_scale), {})
         if st["truth"] is not None:
             idx = st["truth"]["hindcast_index"].values
-            xh = lifecycle._points(st["hindcast"].isel(time=idx), "time")
-            hours = features(xh, lo, span, lifecycle.thrust_at(curve, xh[:, 0]) / t_scale)
+            hours = features(lifecycle._points(st["hindcast"].isel(time=idx), "time"), space, curve, t_scale)
         for line in a.lines:
             y = st["sims"]["damage_sn"].sel(line=line).values.astype(float)
             for v in a.variants:
