@@ -339,3 +339,93 @@ def test_linear_prior_mean_refuses_the_latent_variance():
         gp.predict_latent(model, x, variance_of=[True])
     with pytest.raises(ValueError, match="gp.mean = 'linear'"):
         lifecycle.RBFSettings.from_config({"method": "gp", "gp": {"mean": "linear", "indicator": "sd"}})
+
+
+def _wind_plus_waves(x: np.ndarray) -> np.ndarray:
+    """A narrow peak in the wind speed (modulated by its direction) plus a wave part in Hs: a sum."""
+    w, wd, hs = x[:, 0], np.deg2rad(x[:, 1]), x[:, 2]
+    return np.exp(-(((w - 12.0) / 2.0) ** 2)) * (1.2 + 0.3 * np.cos(wd)) + 0.08 * hs**2
+
+
+WIND_COLUMNS = (0, 3, 5)  # wind_speed, cos_wind_dir, sin_wind_dir in chord_embed's order
+
+
+def test_wind_term_mean_and_variance_equal_scikit_learns_sum_kernel():
+    """additive_columns: C k(l) + C_w k_w(l_w on the wind's coordinates) + White, as scikit-learn
+    predicts it with the same hyperparameters; an output without the term is the plain fit."""
+    from moorlife.gp.columns import OnColumns
+
+    assert [gp.embedded_names(names.METOCEAN_VARS, MASK)[c] for c in WIND_COLUMNS] == [
+        "wind_speed",
+        "cos_wind_dir",
+        "sin_wind_dir",
+    ]
+    assert lifecycle.fit.wind_columns(MASK) == WIND_COLUMNS
+    x = _states(100, 23)
+    y = np.column_stack([_wind_plus_waves(x), _smooth(x)]) + np.random.default_rng(24).normal(0, 0.02, (100, 2))
+    kw = dict(is_direction=MASK, covariance="matern52")
+    model = gp.fit_gp(x, y, additive_columns=WIND_COLUMNS, additive_outputs=[True, False], **kw)
+    assert model.wind_var[0] > 0 and model.wind_var[1] == 0
+    assert np.isinf(np.delete(model.wind_length_scale[0], WIND_COLUMNS)).all()
+    assert (
+        np.isfinite(model.wind_length_scale[0, list(WIND_COLUMNS)]).all() and np.isinf(model.wind_length_scale[1]).all()
+    )
+    z, xq = gp.chord_embed(x, model.space), _states(200, 25)
+    mu, var = gp.predict_latent(model, xq, variance_of=[True, True])
+    v = y[:, 0].var()
+    kern = (
+        C(model.signal_var[0] / v) * _shape("matern52", model.length_scale[0])
+        + C(model.wind_var[0] / v)
+        * OnColumns(_shape("matern52", model.wind_length_scale[0, list(WIND_COLUMNS)]), WIND_COLUMNS)
+        + WhiteKernel(model.noise_var[0] / v)
+    )
+    ref = GaussianProcessRegressor(kern, alpha=0.0, normalize_y=True, optimizer=None).fit(z, y[:, 0])
+    mu_ref, sd_ref = ref.predict(gp.chord_embed(xq, model.space), return_std=True)
+    np.testing.assert_allclose(mu[:, 0], mu_ref, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(var[:, 0] + model.noise_var[0], sd_ref**2, rtol=1e-8)
+    plain = gp.fit_gp(x, y[:, 1], **kw)
+    np.testing.assert_array_equal(gp.predict_gp(model, xq)[:, 1], gp.predict_gp(plain, xq)[:, 0])
+    # the closed-form leave-one-out holds the wind term (B = R + (s_w / s) R_w + ratio I):
+    # scikit-learn refitted without one state, the same hyperparameters in y's own units
+    i, keep = 7, np.arange(100) != 7
+    kern_y = (
+        C(model.signal_var[0], "fixed") * _shape("matern52", model.length_scale[0])
+        + C(model.wind_var[0], "fixed")
+        * OnColumns(_shape("matern52", model.wind_length_scale[0, list(WIND_COLUMNS)]), WIND_COLUMNS)
+        + WhiteKernel(model.noise_var[0], "fixed")
+    )
+    brute = GaussianProcessRegressor(kern_y, alpha=0.0, optimizer=None).fit(z[keep], y[keep, 0] - model.mean[0])
+    assert model.loo_error[i, 0] == pytest.approx(y[i, 0] - model.mean[0] - brute.predict(z[i : i + 1])[0], abs=1e-9)
+
+
+def test_wind_term_recovers_a_sum_of_a_wind_and_a_wave_part_better_than_the_product_kernel():
+    """The constructed sum of section 21's diagnosis: half the error to the truth of the plain GP."""
+    x, xq = _states(120, 30), _states(800, 40)
+    y = _wind_plus_waves(x) + np.random.default_rng(0).normal(0, 0.02, 120)
+    kw = dict(is_direction=MASK, covariance="matern52")
+    add, plain = gp.fit_gp(x, y, additive_columns=WIND_COLUMNS, **kw), gp.fit_gp(x, y, **kw)
+    err = lambda m: np.sqrt(np.mean((gp.predict_gp(m, xq)[:, 0] - _wind_plus_waves(xq)) ** 2))  # noqa: E731
+    assert err(add) < 0.7 * err(plain)
+    assert np.sqrt(np.mean(add.loo_error**2)) < np.sqrt(np.mean(plain.loo_error**2))  # seen by the training states too
+    sub = gp.select_outputs(gp.fit_gp(x, np.column_stack([y, y]), additive_columns=WIND_COLUMNS, **kw), [1])
+    np.testing.assert_array_equal(sub.wind_var, add.wind_var)
+    np.testing.assert_array_equal(sub.wind_length_scale, add.wind_length_scale)
+
+
+def test_wind_term_bad_settings_are_refused():
+    x = _states(30, 26)
+    y = np.column_stack([x[:, 2], x[:, 3]])
+    with pytest.raises(ValueError, match=r"additive_columns \[0, 9\]: need distinct columns of the 7"):
+        gp.fit_gp(x, y, is_direction=MASK, additive_columns=(0, 9))
+    with pytest.raises(ValueError, match=r"additive_columns \[0, 0\]"):
+        gp.fit_gp(x, y, is_direction=MASK, additive_columns=(0, 0))
+    with pytest.raises(ValueError, match=r"outputs \[0, 1\] share their hyperparameters but not all have"):
+        gp.fit_gp(x, y, is_direction=MASK, additive_columns=(0,), additive_outputs=[True, False], groups=[0, 0])
+    with pytest.raises(ValueError, match="wind_term = 'damage' with share = 'all'"):
+        lifecycle.RBFSettings.from_config({"method": "gp", "gp": {"wind_term": "damage", "share": "all"}})
+    with pytest.raises(ValueError, match="wind_term"):
+        lifecycle.RBFSettings.from_config({"method": "gp", "gp": {"wind_term": "waves"}})
+    assert (
+        lifecycle.RBFSettings.from_config({"method": "gp", "gp": {"wind_term": "all", "share": "all"}}).gp.wind_term
+        == "all"
+    )

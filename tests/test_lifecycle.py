@@ -729,15 +729,17 @@ GP = {"method": "gp", "outputs": list(lifecycle.DEFAULT_OUTPUTS), "gp": {"subsam
 
 
 @pytest.mark.parametrize(
-    ("share", "mean", "indicator", "covariance"),
+    ("share", "mean", "indicator", "covariance", "wind"),
     [
-        ("none", "constant", "sd", "gaussian"),
-        ("variable", "constant", "sd", "matern52"),
-        ("all", "linear", "loo", "matern32"),
+        ("none", "constant", "sd", "gaussian", "none"),
+        ("variable", "constant", "sd", "matern52", "none"),
+        ("all", "linear", "loo", "matern32", "none"),
+        ("variable", "constant", "sd", "matern52", "damage"),
     ],
 )
-def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator, covariance):
-    """method: gp: perturbing the validation outputs changes the validation metrics and nothing else."""
+def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator, covariance, wind):
+    """method: gp: perturbing the validation outputs changes the validation metrics and nothing else
+    (``wind``: ``gp.wind_term``, the damage with an additive term of the wind)."""
     curve = _thrust_curve()
     hc = _hindcast(1500, seed=30)
     cases = _cases(hc, 90, 25, seed=31)
@@ -746,8 +748,18 @@ def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator,
     sims["damage_sn"] = (("case", "line"), np.outer(y[:, 0], [1.0, 0.5, 2.0]))
     sims["heave_mpm"] = ("case", y[:, 1])
     gp_cfg = {"subsample": 40, "thrust": True, "indicator": indicator, "share": share, "mean": mean}
-    settings = lifecycle.RBFSettings.from_config({**GP, "gp": {**gp_cfg, "covariance": covariance}})
+    settings = lifecycle.RBFSettings.from_config({**GP, "gp": {**gp_cfg, "covariance": covariance, "wind_term": wind}})
     a = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=5, thrust=curve)
+    if wind == "none":
+        assert "gp_wind_sd" not in a and "gp_wind_term" not in a.attrs
+    else:  # the damage has the wind term, seeing the wind speed and direction only; the rest has none
+        assert a.attrs["gp_wind_term"] == wind
+        is_dmg = np.char.startswith(a["output"].values.astype(str), "damage")
+        sd, wls = a["gp_wind_sd"].values, a["gp_wind_length_scale"]
+        assert (sd[is_dmg] > 0).all() and (sd[~is_dmg] == 0).all()
+        seen = ["wind_speed", "cos_wind_dir", "sin_wind_dir"]
+        assert np.isfinite(wls.sel(gp_input=seen).values[is_dmg]).all()
+        assert np.isinf(wls.drop_sel(gp_input=seen).values[is_dmg]).all()
     assert a.attrs["gp_share"] == share and a.attrs["gp_mean"] == mean and a.attrs["gp_covariance"] == covariance
     dmg = [o for o in a["output"].values.astype(object) if o.startswith("damage")]
     same = [
@@ -765,7 +777,8 @@ def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator,
     assert a.sizes["gp_input"] == 8 and np.all(np.isnan(a["shape_parameter"].values))
     changed = [v for v in a.data_vars if not a[v].equals(b[v])]
     assert changed and all(v.startswith("validation_") for v in changed), changed
-    for v in ("gp_length_scale", "gp_noise_sd", "smoothing", "retransform_factor", "loo_error", "error_indicator"):
+    kept = ("gp_length_scale", "gp_noise_sd", "smoothing", "retransform_factor", "loo_error", "error_indicator")
+    for v in kept + (("gp_wind_sd", "gp_wind_length_scale") if wind != "none" else ()):
         np.testing.assert_array_equal(a[v].values, b[v].values)
     np.testing.assert_array_equal(a["damage_sn"].values, b["damage_sn"].values)
 
@@ -873,9 +886,10 @@ def test_gp_per_output_choice_with_outputs_in_both_spaces():
     got = lifecycle.predict_outputs(mixed, at)
     np.testing.assert_array_equal(got[:, 0], lifecycle.predict_outputs(thrust, at)[:, 0])
     np.testing.assert_array_equal(got[:, 1], lifecycle.predict_outputs(paper, at)[:, 1])
-    inputs, ls, _, noise = lifecycle.adapters._gp_records(mixed)
+    inputs, ls, _, noise, _, wind_sd = lifecycle.adapters._gp_records(mixed)
     k = inputs.index("thrust")
     assert np.isnan(ls[1, k]) and ls[0, k] > 0 and not np.isnan(np.delete(ls, k, axis=1)).any()
+    assert wind_sd is None  # no wind term (lifecycle.rbf.gp.wind_term: none)
     np.testing.assert_array_equal(
         noise, [np.sqrt(thrust.models[0].noise_var[0]), np.sqrt(paper.models[0].noise_var[1])]
     )

@@ -13,8 +13,14 @@ Inputs
     direction embedded as ``(cos, sin) / pi`` (:func:`chord_embed`): a Euclidean embedding, so the
     kernel is positive definite on the circle, with the folded distance of the RBF to first
     order. Optionally the rotor thrust ``T(W)`` as one more scalar (:mod:`moorlife.lifecycle.spaces`).
+Additive wind term (``lifecycle.rbf.gp.wind_term``, opt-in)
+    ``f = f_all + f_wind``: beside the kernel of every coordinate, a second one of the same family
+    on the wind speed and direction alone, with its own amplitude ``s_w`` and length scales
+    (:class:`~moorlife.gp.columns.OnColumns` in the fit). A line's tension variance is nearly a
+    wind part plus a wave part; a product kernel cannot keep the damage flat in Hs where the
+    wind drives the line and steep where the waves do.
 Hyperparameters
-    ``s_f``, ``l`` and ``s_n`` per output by the maximum of the log marginal likelihood,
+    ``s_f``, ``l`` and ``s_n`` (and ``s_w``, ``l_w``) per output by the maximum of the log marginal likelihood,
     scikit-learn's :class:`~sklearn.gaussian_process.GaussianProcessRegressor` (L-BFGS-B, optional
     seeded restarts), on all training states or a seeded subsample of them (the cost is cubic).
 Conditioning
@@ -32,6 +38,7 @@ Back-transform of a ``log10`` output
     point and output, see :mod:`moorlife.gp.predict`).
 
 Modules: :mod:`~moorlife.gp.covariance` (the correlation families),
+:mod:`~moorlife.gp.columns` (a scikit-learn kernel of some input columns),
 :mod:`~moorlife.gp.fit` (embedding, hyperparameters, conditioning, leave-one-out, the
 models of some outputs) and
 :mod:`~moorlife.gp.predict` (mean, latent variance, back-transform).

@@ -82,6 +82,15 @@ class GPModel:
         The slopes of a linear prior mean along the embedded coordinates (``None``: constant).
     covariance : str
         One of :data:`~moorlife.gp.covariance.GP_COVARIANCES`.
+    wind_length_scale : numpy.ndarray, shape (n_out, p), or None
+        The length scales of the additive term (:func:`fit_gp`'s ``additive_columns``):
+        ``inf`` along the coordinates it does not see, and along every coordinate of an output
+        without it (``None``: no output has it).
+    wind_var : numpy.ndarray, shape (n_out,), or None
+        The additive term's signal variance (0 for an output without it). With it the
+        correlation of output ``j`` is ``rho_j + (wind_var_j / signal_var_j) rho_w,j`` and its
+        prior variance ``signal_var_j + wind_var_j``: ``B_j`` and the posterior mean and latent
+        variance above use that sum.
     """
 
     space: Space
@@ -99,10 +108,19 @@ class GPModel:
     retransform: str
     slope: np.ndarray | None = None
     covariance: str = "gaussian"
+    wind_length_scale: np.ndarray | None = None
+    wind_var: np.ndarray | None = None
 
     @property
     def n_outputs(self) -> int:
         return int(self.weights.shape[1])
+
+    @property
+    def wind_ratio(self) -> np.ndarray:
+        """``wind_var / signal_var`` per output (zeros without the additive term)."""
+        if self.wind_var is None:
+            return np.zeros(self.n_outputs)
+        return self.wind_var / self.signal_var
 
 
 def select_outputs(model: GPModel, columns: npt.ArrayLike) -> GPModel:
@@ -135,6 +153,8 @@ def select_outputs(model: GPModel, columns: npt.ArrayLike) -> GPModel:
         loo_var=model.loo_var[:, c],
         log_factor=model.log_factor[c],
         slope=None if model.slope is None else model.slope[:, c],
+        wind_length_scale=None if model.wind_length_scale is None else model.wind_length_scale[c],
+        wind_var=None if model.wind_var is None else model.wind_var[c],
     )
 
 
@@ -193,6 +213,8 @@ def fit_gp(
     groups: npt.ArrayLike | None = None,
     prior_mean: str = "constant",
     covariance: str = "gaussian",
+    additive_columns: Sequence[int] | None = None,
+    additive_outputs: bool | npt.ArrayLike = True,
 ) -> GPModel:
     """Fit one Gaussian process with a noise term per output column.
 
@@ -245,6 +267,17 @@ def fit_gp(
     covariance : {"gaussian", "matern52", "matern32"}
         The correlation family (:mod:`moorlife.gp.covariance`): scikit-learn's ``RBF``, or its
         ``Matern`` with ``nu`` 2.5 or 1.5.
+    additive_columns : sequence of int, optional
+        The embedded coordinates (:func:`chord_embed`'s columns) of an additive term: the
+        outputs of ``additive_outputs`` get the kernel ``C * k(l) + C_w * k_w(l_w) + White``,
+        ``k_w`` of the same family seeing these coordinates only (:class:`~moorlife.gp.columns.OnColumns`),
+        with its own amplitude and length scales (the bounds of ``signal`` and ``length_scale``).
+        A line's tension variance is nearly a wind part plus a wave part; the term lets the
+        output follow the wind where the waves are small (``validation/reconstruction.md``,
+        section 20). Default: no such term.
+    additive_outputs : bool or array_like of bool (n_out,)
+        The outputs with the additive term (when ``additive_columns`` is given). The outputs of a
+        ``groups`` label must all have it or all not.
 
     Returns
     -------
@@ -254,7 +287,8 @@ def fit_gp(
     ------
     ValueError
         On non-finite values, a non-positive value of a ``log10`` output, an unknown kernel,
-        covariance or back-transform, or inconsistent bounds.
+        covariance or back-transform, inconsistent bounds, additive columns out of range or
+        repeated, or a group mixing outputs with and without the additive term.
     """
     from sklearn.exceptions import ConvergenceWarning
     from sklearn.gaussian_process import GaussianProcessRegressor
@@ -302,8 +336,31 @@ def fit_gp(
         else Matern(ls0, length_scale[1:], nu=MATERN_NU[covariance])
     )
     k = C(signal[0], signal[1:]) * shape + WhiteKernel(noise[0], noise[1:])  # cloned by every fit
+    add_cols, has_add = _additive(additive_columns, additive_outputs, p, n_out)
+    k_add = None
+    if add_cols is not None:
+        from moorlife.gp.columns import OnColumns
+
+        ls0w = np.full(add_cols.size, length_scale[0]) if kernel == "ard" else length_scale[0]
+        shape_w = (
+            RBF(ls0w, length_scale[1:])
+            if covariance == "gaussian"
+            else Matern(ls0w, length_scale[1:], nu=MATERN_NU[covariance])
+        )
+        wind = C(signal[0], signal[1:]) * OnColumns(shape_w, tuple(add_cols.tolist()))
+        k_add = C(signal[0], signal[1:]) * shape + wind + WhiteKernel(noise[0], noise[1:])
+    wls = np.full((n_out, p), np.inf) if add_cols is not None else None
+    wvar = np.zeros(n_out) if add_cols is not None else None
     for cols in _output_groups(groups, n_out):
-        gpr = GaussianProcessRegressor(k, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed)
+        with_add = bool(has_add[cols[0]])
+        if has_add[cols].any() and not has_add[cols].all():
+            raise ValueError(
+                f"GP outputs {cols.tolist()} share their hyperparameters but not all have the additive term"
+            )
+        kern = k_add if with_add else k
+        gpr = GaussianProcessRegressor(
+            kern, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed
+        )
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", ConvergenceWarning)
             gpr.fit(z[sub], yh[sub, cols[0]] if cols.size == 1 else yh[np.ix_(sub, cols)])
@@ -312,11 +369,31 @@ def fit_gp(
                 log.info("GP outputs %s: %s", cols.tolist(), str(w.message).splitlines()[0])
         kf = gpr.kernel_
         scale2 = np.broadcast_to(np.asarray(gpr._y_train_std, dtype=float) ** 2, (cols.size,))
-        ls[cols] = np.broadcast_to(kf.k1.k2.length_scale, (p,))
-        sig[cols] = kf.k1.k1.constant_value * scale2
+        full = kf.k1.k1 if with_add else kf.k1  # C * k(l)
+        ls[cols] = np.broadcast_to(full.k2.length_scale, (p,))
+        sig[cols] = full.k1.constant_value * scale2
         noi[cols] = kf.k2.noise_level * scale2
         ratio[cols] = noi[cols[0]] / sig[cols[0]]  # one value per group, so its outputs share B
-    return _condition(space, z, y, ls, sig, noi, ratio, mean, logs, retransform, h, covariance)
+        if with_add:
+            w = kf.k1.k2  # C_w * OnColumns(k_w(l_w))
+            wls[np.ix_(cols, add_cols)] = np.broadcast_to(w.k2.base.length_scale, (add_cols.size,))
+            wvar[cols] = w.k1.constant_value * scale2
+    return _condition(
+        space, z, y, ls, sig, noi, ratio, mean, logs, retransform, h, covariance, wind_ls=wls, wind_var=wvar
+    )
+
+
+def _additive(
+    columns: Sequence[int] | None, outputs: bool | npt.ArrayLike, p: int, n_out: int
+) -> tuple[np.ndarray | None, np.ndarray]:
+    """The additive term's embedded columns (None: no term) and which outputs have it."""
+    if columns is None:
+        return None, np.zeros(n_out, dtype=bool)
+    c = np.asarray(columns, dtype=np.int64).reshape(-1)
+    if c.size == 0 or c.min() < 0 or c.max() >= p or np.unique(c).size != c.size:
+        raise ValueError(f"GP additive_columns {c.tolist()}: need distinct columns of the {p} embedded coordinates")
+    has = np.broadcast_to(np.asarray(outputs, dtype=bool), (n_out,)).copy()
+    return (c, has) if has.any() else (None, has)
 
 
 def _output_groups(groups: npt.ArrayLike | None, n_out: int) -> list[np.ndarray]:
@@ -356,11 +433,15 @@ def _condition(
     retransform: str,
     h: np.ndarray | None = None,
     covariance: str = "gaussian",
+    *,
+    wind_ls: np.ndarray | None = None,
+    wind_var: np.ndarray | None = None,
 ) -> GPModel:
     """Condition every output's process on all training states: weights, Cholesky factors, leave-one-out.
 
-    ``B = R + ratio I`` (``R`` the correlation, ``ratio`` the noise over the signal variance) is
-    factored once per distinct ``(length scales, ratio)``: the outputs of a group share it. With
+    ``B = R + ratio I`` (``R`` the correlation, ``ratio`` the noise over the signal variance;
+    with the additive term ``R + (wind_var / sig) R_w + ratio I``) is factored once per distinct
+    ``(length scales, ratio)``: the outputs of a group share it. With
     ``h`` (the linear prior mean's basis at the training states) the mean's coefficients are the
     generalised least-squares estimate ``(h' B^-1 h)^-1 h' B^-1 y`` and the leave-one-out
     residuals divide by the diagonal of ``B^-1 - B^-1 h (h' B^-1 h)^-1 h' B^-1``."""
@@ -372,13 +453,18 @@ def _condition(
     mean = mean.copy()
     slope = None if h is None else np.empty((h.shape[1] - 1, n_out))
     done: dict[bytes, tuple] = {}  # outputs of one group share B: factor it once
+    wr = np.zeros(n_out) if wind_var is None else wind_var / sig
     for j in range(n_out):
         key = ls[j].tobytes() + np.float64(ratio[j]).tobytes()
+        if wr[j] > 0:
+            key += wind_ls[j].tobytes() + np.float64(wr[j]).tobytes()
         if key in done:
             first, d, bih, s_inv = done[key]
             chol[j] = chol[first]
         else:
             b = correlation(z, z, ls[j], covariance)
+            if wr[j] > 0:
+                b += wr[j] * correlation(z, z, wind_ls[j], covariance)
             b[np.diag_indices(m)] += ratio[j]
             chol[j] = sla.cholesky(b, lower=True, check_finite=False)
             l_inv, info = sla.lapack.dtrtri(chol[j], lower=1)
@@ -418,4 +504,6 @@ def _condition(
         retransform=retransform,
         slope=slope,
         covariance=covariance,
+        wind_length_scale=wind_ls,
+        wind_var=wind_var,
     )

@@ -157,16 +157,27 @@ def predict_latent(
     """
     z = chord_embed(points, model.space)
     n = z.shape[0]
-    want = np.zeros(model.n_outputs, bool) if variance_of is None else np.asarray(variance_of, bool)
-    gptr, gcols = _groups(model.length_scale)
-    s2 = np.ascontiguousarray(model.length_scale[gcols[gptr[:-1]]] ** -2.0)
-    mean = np.zeros((n, model.n_outputs))
-    w = np.ascontiguousarray(model.weights.T)
+    n_out = model.n_outputs
+    want = np.zeros(n_out, bool) if variance_of is None else np.asarray(variance_of, bool)
+    wr = model.wind_ratio
+    add = np.flatnonzero(wr > 0)
+    # the additive term as more outputs of the compiled kernel: its length scales (inf: a
+    # coordinate it does not see, so 1 / l^2 = 0) and the weights times wind_var / signal_var,
+    # added to their output afterwards
+    ls_all = model.length_scale if add.size == 0 else np.vstack([model.length_scale, model.wind_length_scale[add]])
+    w_all = model.weights if add.size == 0 else np.hstack([model.weights, model.weights[:, add] * wr[add]])
+    gptr, gcols = _groups(ls_all)
+    s2 = np.ascontiguousarray(ls_all[gcols[gptr[:-1]]] ** -2.0)
+    mean = np.zeros((n, ls_all.shape[0]))
+    w = np.ascontiguousarray(w_all.T)
     _mean_rows(z, s2, np.ascontiguousarray(model.centres.T), gptr, gcols, w, covariance_code(model.covariance), mean)
+    if add.size:
+        mean[:, add] += mean[:, n_out:]
+        mean = np.ascontiguousarray(mean[:, :n_out])
     mean += model.mean
     if model.slope is not None:
         mean += z @ model.slope
-    var = np.full((n, model.n_outputs), np.nan)
+    var = np.full((n, n_out), np.nan)
     if want.any():
         if model.slope is not None:
             raise ValueError("the latent variance of a GP with a linear prior mean is not available")
@@ -175,8 +186,10 @@ def predict_latent(
             for s in range(0, n, rows):
                 e = min(n, s + rows)
                 k = correlation(z[s:e], model.centres, model.length_scale[j], model.covariance)
+                if wr[j] > 0:
+                    k += wr[j] * correlation(z[s:e], model.centres, model.wind_length_scale[j], model.covariance)
                 v = sla.solve_triangular(model.chol[j], k.T, lower=True, check_finite=False)
-                var[s:e, j] = np.maximum(model.signal_var[j] * (1.0 - np.einsum("ij,ij->j", v, v)), 0.0)
+                var[s:e, j] = np.maximum(model.signal_var[j] * (1.0 + wr[j] - np.einsum("ij,ij->j", v, v)), 0.0)
     return mean, var
 
 

@@ -96,7 +96,7 @@ def _fit_vars(out: xr.Dataset, model: Reconstruction, x_train: np.ndarray, ids: 
     out["train_points"] = (("train", "metocean_var"), x_train, _a("training sea states (physical units)"))
     out["loo_error"] = (("train", "output"), model.loo_error, _a("leave-one-out residual per training state"))
     if model.method == "gp":
-        inputs, ls, sig, noise = _gp_records(model)
+        inputs, ls, sig, noise, wls, wsd = _gp_records(model)
         out = out.assign_coords(gp_input=inputs)
         out["gp_length_scale"] = (
             ("output", "gp_input"),
@@ -105,6 +105,15 @@ def _fit_vars(out: xr.Dataset, model: Reconstruction, x_train: np.ndarray, ids: 
         )
         out["gp_signal_sd"] = ("output", sig, _a("GP signal standard deviation (transformed units)"))
         out["gp_noise_sd"] = ("output", noise, _a("GP noise standard deviation (transformed units)"))
+        if wsd is not None:  # lifecycle.rbf.gp.wind_term
+            out["gp_wind_length_scale"] = (
+                ("output", "gp_input"),
+                wls,
+                _a(
+                    "GP wind term's length scale (normalised input units; inf: not seen by the term; NaN: not an input)"
+                ),
+            )
+            out["gp_wind_sd"] = ("output", wsd, _a("GP wind term's standard deviation (transformed units; 0: none)"))
     return out
 
 
@@ -114,18 +123,26 @@ def _gp_inputs(g: gp.GPModel) -> list[str]:
     return gp.embedded_names(variables, g.space.is_direction)
 
 
-def _gp_records(model: Reconstruction) -> tuple[list[str], np.ndarray, np.ndarray, np.ndarray]:
-    """Every output's GP length scales on the union of the inputs in use, signal and noise sd."""
+def _gp_records(
+    model: Reconstruction,
+) -> tuple[list[str], np.ndarray, np.ndarray, np.ndarray, np.ndarray | None, np.ndarray | None]:
+    """Every output's GP length scales on the union of the inputs in use, signal and noise sd,
+    and the wind term's length scales and sd (None when no model has the term)."""
     own = [_gp_inputs(g) for g in model.models]
     inputs = max(own, key=len)  # the thrust space's inputs hold the paper space's
     n = model.n_outputs
     ls = np.full((n, len(inputs)), np.nan)
     sig, noise = np.empty(n), np.empty(n)
+    wind = any(g.wind_var is not None for g in model.models)
+    wls, wsd = (np.full((n, len(inputs)), np.nan), np.zeros(n)) if wind else (None, None)
     for g, cols, names_g in zip(model.models, model.columns, own):
         where = [inputs.index(k) for k in names_g]
         ls[np.ix_(cols, where)] = g.length_scale
         sig[cols], noise[cols] = np.sqrt(g.signal_var), np.sqrt(g.noise_var)
-    return inputs, ls, sig, noise
+        if g.wind_var is not None:
+            wls[np.ix_(cols, where)] = g.wind_length_scale
+            wsd[cols] = np.sqrt(g.wind_var)
+    return inputs, ls, sig, noise, wls, wsd
 
 
 def _validation_vars(
@@ -251,7 +268,7 @@ def reconstruct_lifecycle(
     model = fit_outputs(x[train], y[train], cols, settings, lo=lo, span=span, thrust=thrust)
     labels = [_label(c) for c in cols]
     if model.method == "gp":
-        inputs, ls_all, sig, noise = _gp_records(model)
+        inputs, ls_all, sig, noise, wls, wsd = _gp_records(model)
         log.info(
             "GP per output: length scales on %s, signal sd, noise sd (transformed units):\n%s",
             inputs,
@@ -260,6 +277,16 @@ def reconstruct_lifecycle(
                 for lab, ls, sv, nv in zip(labels, ls_all, sig, noise)
             ),
         )
+        if wsd is not None:
+            log.info(
+                "GP wind term per output: length scales on %s (inf: not seen), sd:\n%s",
+                inputs,
+                "\n".join(
+                    f"  {lab:<18} {np.array2string(ls, precision=3)} {sd:.4g}"
+                    for lab, ls, sd in zip(labels, wls, wsd)
+                    if sd > 0
+                ),
+            )
     log.info(
         "RBF fitted on %d training states, %d outputs; shapes %s",
         int(train.sum()),
@@ -342,6 +369,8 @@ def reconstruct_lifecycle(
         out.attrs.update({"rbf_method": "gp", "gp_kernel": g.kernel, "gp_retransform": g.retransform})
         out.attrs.update({"gp_subsample": g.subsample, "gp_thrust": int(g.thrust), "gp_indicator": g.indicator})
         out.attrs.update({"gp_share": g.share, "gp_mean": g.mean, "gp_covariance": g.covariance})
+        if g.wind_term != "none":  # the GP stores without the term stay as they were
+            out.attrs["gp_wind_term"] = g.wind_term
     if thrust is not None and settings.thrust_statistic != "steady":  # the steady curve's stores as they were
         out.attrs.update(
             {

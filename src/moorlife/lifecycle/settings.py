@@ -47,6 +47,9 @@ class GPSettings:
         Outputs that share their hyperparameters (:func:`moorlife.gp.fit_gp`'s ``groups``).
     mean : {"constant", "linear"}
         The prior mean (:func:`moorlife.gp.fit_gp`'s ``prior_mean``).
+    wind_term : {"none", "damage", "all"}
+        The outputs with an additive term of the wind speed and direction
+        (:func:`moorlife.gp.fit_gp`'s ``additive_columns``).
     """
 
     kernel: str
@@ -62,6 +65,7 @@ class GPSettings:
     indicator: str
     share: str
     mean: str
+    wind_term: str
 
     @classmethod
     def from_section(cls, g: Mapping[str, Any], source: str = "config.yaml") -> GPSettings:
@@ -70,7 +74,8 @@ class GPSettings:
         Raises
         ------
         ValueError
-            If a hyperparameter's ``initial`` is outside ``[min, max]``.
+            If a hyperparameter's ``initial`` is outside ``[min, max]``, or ``wind_term: damage``
+            is asked with ``share: all`` (one group cannot mix outputs with and without the term).
         """
         triples = {}
         for key in ("length_scale", "signal", "noise"):
@@ -92,7 +97,18 @@ class GPSettings:
             indicator=str(g["indicator"]),
             share=str(g["share"]),
             mean=str(g["mean"]),
+            wind_term=_wind_term(g, source),
         )
+
+
+def _wind_term(g: Mapping[str, Any], source: str) -> str:
+    term = str(g["wind_term"])
+    if term == "damage" and str(g["share"]) == "all":
+        raise ValueError(
+            f"{source}: lifecycle.rbf.gp.wind_term = 'damage' with share = 'all': one hyperparameter "
+            "group cannot mix outputs with and without the wind term (use share none or variable, or wind_term all)"
+        )
+    return term
 
 
 @dataclass(frozen=True)
