@@ -140,7 +140,14 @@ def kill_during_fanout(
     work: Path, cmd: list[str], part: Path, n: int, *, log: Path | None = None, poll: float = 0.02
 ) -> int:
     """Run ``cmd`` (snakemake) in ``work``, SIGKILL its process group once the partial store
-    ``part`` holds ``n`` finished batches (or the run ended, or 600 s passed); the batches done."""
+    ``part`` holds ``n`` finished batches (or the run ended, or 600 s passed); the batches done.
+
+    The driver writes the batches after the workers computed them, so on a slow disk they can
+    all be flagged between two polls. When the kill finds every batch flagged but the store not
+    yet promoted, the last batch's flag is cleared: the state a kill between that batch's data
+    and its flag leaves (:meth:`moorlife.io.partial.PartialStore.write`), so the resume always
+    computes at least one batch whatever the timing.
+    """
     env = {**os.environ, "PYTHONWARNINGS": "ignore"}
     env.pop("DASK_SCHEDULER_ADDRESS", None)
     with open(log, "w") if log is not None else open(os.devnull, "w") as out:
@@ -150,7 +157,23 @@ def kill_during_fanout(
             time.sleep(poll)
         os.killpg(proc.pid, signal.SIGKILL)
         proc.wait()
+    _unflag_last_if_all_done(part)
     return done_batches(part)
+
+
+def _unflag_last_if_all_done(part: Path) -> None:
+    import zarr
+
+    try:
+        group = zarr.open_group(str(part), mode="r+")
+    except Exception:
+        return
+    if group.attrs.get(mio.COMPLETE_ATTR, False) or "_batch_done" not in group:
+        return
+    flags = group["_batch_done"]
+    n = flags.shape[0]
+    if n > 1 and bool(np.all(flags[:] == 1)):
+        flags[n - 1] = 0
 
 
 def _identical(a: Path, b: Path) -> None:
