@@ -350,52 +350,96 @@ def _wind_plus_waves(x: np.ndarray) -> np.ndarray:
 WIND_COLUMNS = (0, 3, 5)  # wind_speed, cos_wind_dir, sin_wind_dir in chord_embed's order
 
 
-def test_wind_term_mean_and_variance_equal_scikit_learns_sum_kernel():
-    """additive_columns: C k(l) + C_w k_w(l_w on the wind's coordinates) + White, as scikit-learn
-    predicts it with the same hyperparameters; an output without the term is the plain fit."""
-    from moorlife.gp.columns import OnColumns
+@pytest.mark.parametrize("gated", [False, True])
+def test_wind_term_mean_and_variance_equal_scikit_learns_sum_kernel(gated):
+    """additive_columns: C k(l) + C_w [g g'] k_w(l_w on the wind's coordinates) + White, as
+    scikit-learn predicts it with the same hyperparameters (``g`` the sea gate of gate_column);
+    an output without the term is the plain fit."""
+    from moorlife.gp.kernels import OnColumns, SeaGate
 
     assert [gp.embedded_names(names.METOCEAN_VARS, MASK)[c] for c in WIND_COLUMNS] == [
         "wind_speed",
         "cos_wind_dir",
         "sin_wind_dir",
     ]
-    assert lifecycle.fit.wind_columns(MASK) == WIND_COLUMNS
+    assert lifecycle.fit.wind_columns(MASK) == WIND_COLUMNS and lifecycle.fit.wave_height_column(MASK) == 1
     x = _states(100, 23)
     y = np.column_stack([_wind_plus_waves(x), _smooth(x)]) + np.random.default_rng(24).normal(0, 0.02, (100, 2))
     kw = dict(is_direction=MASK, covariance="matern52")
-    model = gp.fit_gp(x, y, additive_columns=WIND_COLUMNS, additive_outputs=[True, False], **kw)
-    assert model.wind_var[0] > 0 and model.wind_var[1] == 0
+    gate_kw = dict(gate_column=1) if gated else {}
+    model = gp.fit_gp(x, y, additive_columns=WIND_COLUMNS, additive_outputs=[True, False], **gate_kw, **kw)
+    assert model.wind_var[0] > 0 and model.wind_var[1] == 0 and model.gate_column == (1 if gated else -1)
+    assert np.isinf(model.wind_gate[1]) and (
+        0.02 <= model.wind_gate[0] <= 2.0 if gated else np.isinf(model.wind_gate[0])
+    )
     assert np.isinf(np.delete(model.wind_length_scale[0], WIND_COLUMNS)).all()
     assert (
         np.isfinite(model.wind_length_scale[0, list(WIND_COLUMNS)]).all() and np.isinf(model.wind_length_scale[1]).all()
     )
     z, xq = gp.chord_embed(x, model.space), _states(200, 25)
     mu, var = gp.predict_latent(model, xq, variance_of=[True, True])
-    v = y[:, 0].var()
-    kern = (
-        C(model.signal_var[0] / v) * _shape("matern52", model.length_scale[0])
-        + C(model.wind_var[0] / v)
-        * OnColumns(_shape("matern52", model.wind_length_scale[0, list(WIND_COLUMNS)]), WIND_COLUMNS)
-        + WhiteKernel(model.noise_var[0] / v)
-    )
-    ref = GaussianProcessRegressor(kern, alpha=0.0, normalize_y=True, optimizer=None).fit(z, y[:, 0])
-    mu_ref, sd_ref = ref.predict(gp.chord_embed(xq, model.space), return_std=True)
+
+    def kernel(unit: float, bounds):
+        term = OnColumns(_shape("matern52", model.wind_length_scale[0, list(WIND_COLUMNS)]), WIND_COLUMNS)
+        if gated:
+            term = SeaGate(term, 1, model.wind_gate[0], "fixed")
+        return (
+            C(model.signal_var[0] / unit, bounds) * _shape("matern52", model.length_scale[0])
+            + C(model.wind_var[0] / unit, bounds) * term
+            + WhiteKernel(model.noise_var[0] / unit, bounds)
+        )
+
+    ref = GaussianProcessRegressor(kernel(y[:, 0].var(), "fixed"), alpha=0.0, normalize_y=True, optimizer=None)
+    mu_ref, sd_ref = ref.fit(z, y[:, 0]).predict(gp.chord_embed(xq, model.space), return_std=True)
     np.testing.assert_allclose(mu[:, 0], mu_ref, rtol=0, atol=1e-9)
     np.testing.assert_allclose(var[:, 0] + model.noise_var[0], sd_ref**2, rtol=1e-8)
     plain = gp.fit_gp(x, y[:, 1], **kw)
     np.testing.assert_array_equal(gp.predict_gp(model, xq)[:, 1], gp.predict_gp(plain, xq)[:, 0])
-    # the closed-form leave-one-out holds the wind term (B = R + (s_w / s) R_w + ratio I):
+    # the closed-form leave-one-out holds the wind term (B = R + (s_w / s) [g g'] R_w + ratio I):
     # scikit-learn refitted without one state, the same hyperparameters in y's own units
     i, keep = 7, np.arange(100) != 7
-    kern_y = (
-        C(model.signal_var[0], "fixed") * _shape("matern52", model.length_scale[0])
-        + C(model.wind_var[0], "fixed")
-        * OnColumns(_shape("matern52", model.wind_length_scale[0, list(WIND_COLUMNS)]), WIND_COLUMNS)
-        + WhiteKernel(model.noise_var[0], "fixed")
-    )
-    brute = GaussianProcessRegressor(kern_y, alpha=0.0, optimizer=None).fit(z[keep], y[keep, 0] - model.mean[0])
+    brute = GaussianProcessRegressor(kernel(1.0, "fixed"), alpha=0.0, optimizer=None)
+    brute.fit(z[keep], y[keep, 0] - model.mean[0])
     assert model.loo_error[i, 0] == pytest.approx(y[i, 0] - model.mean[0] - brute.predict(z[i : i + 1])[0], abs=1e-9)
+
+
+def test_sea_gate_kernel_gradient_equals_finite_differences():
+    """The gate's scale is a hyperparameter of the marginal likelihood: its gradient, and the base's."""
+    from sklearn.gaussian_process.kernels import Matern
+
+    from moorlife.gp.kernels import OnColumns, SeaGate
+
+    z = np.random.default_rng(27).uniform(0, 1, (12, 7))
+    k = SeaGate(OnColumns(Matern(np.full(3, 0.3), (1e-2, 1e2), nu=2.5), WIND_COLUMNS), 1, 0.3)
+    kz, dk = k(z, eval_gradient=True)
+    theta = k.theta
+    assert theta.size == 4 and k.bounds.shape == (4, 2) and theta[0] == pytest.approx(np.log(0.3))
+    for i in range(theta.size):
+        step = 1e-6 * np.eye(theta.size)[i]
+        fd = (k.clone_with_theta(theta + step)(z) - k.clone_with_theta(theta - step)(z)) / 2e-6
+        np.testing.assert_allclose(dk[:, :, i], fd, atol=1e-8)
+    np.testing.assert_allclose(np.diag(kz), k.diag(z))
+    g = gp.covariance.gate(z[:, 1], 0.3)
+    np.testing.assert_allclose(kz, np.outer(g, g) * k.base(z), rtol=1e-14)
+    assert np.all(np.linalg.eigvalsh(kz + 1e-12 * np.eye(12)) > 0)
+
+
+def test_sea_gate_keeps_the_wind_term_out_of_the_storm():
+    """A wind part that fades as the sea grows (the light line's damage, section 21): the gated
+    term recovers it better than the ungated one, which spreads the wind's peak into the storm."""
+    x, xq = _states(150, 31), _states(800, 41)
+
+    def f(p):
+        return np.exp(-(((p[:, 0] - 12.0) / 2.0) ** 2)) * np.exp(-p[:, 2] / 1.5) + 0.05 * p[:, 2] ** 2
+
+    y = f(x) + np.random.default_rng(1).normal(0, 0.02, 150)
+    kw = dict(is_direction=MASK, covariance="matern52", additive_columns=WIND_COLUMNS)
+    gated, plain = gp.fit_gp(x, y, gate_column=1, **kw), gp.fit_gp(x, y, **kw)
+    err = lambda m, sel: np.sqrt(np.mean((gp.predict_gp(m, xq)[sel, 0] - f(xq)[sel]) ** 2))  # noqa: E731
+    storm = xq[:, 2] > 4.0
+    assert err(gated, storm) < 0.5 * err(plain, storm) and err(gated, ~storm) < 0.7 * err(plain, ~storm)
+    span = gated.space.scale[2]  # the wave height's normalisation span (m)
+    assert gated.wind_gate[0] * span == pytest.approx(1.5, rel=0.2)  # the fitted gate is the fade's 1.5 m
 
 
 def test_wind_term_recovers_a_sum_of_a_wind_and_a_wave_part_better_than_the_product_kernel():
@@ -419,6 +463,14 @@ def test_wind_term_bad_settings_are_refused():
         gp.fit_gp(x, y, is_direction=MASK, additive_columns=(0, 9))
     with pytest.raises(ValueError, match=r"additive_columns \[0, 0\]"):
         gp.fit_gp(x, y, is_direction=MASK, additive_columns=(0, 0))
+    with pytest.raises(ValueError, match=r"gate_column 3: need one of the 7 embedded coordinates, not the term's"):
+        gp.fit_gp(x, y, is_direction=MASK, additive_columns=WIND_COLUMNS, gate_column=3)
+    with pytest.raises(ValueError, match="gate_scale: need 0 < min <= initial <= max"):
+        gp.fit_gp(x, y, is_direction=MASK, additive_columns=WIND_COLUMNS, gate_column=1, gate_scale=(3.0, 0.1, 2.0))
+    with pytest.raises(ValueError, match="lifecycle.rbf.gp.wind_gate needs min <= initial <= max"):
+        lifecycle.RBFSettings.from_config(
+            {"method": "gp", "gp": {"wind_term": "damage", "wind_gate": {"initial": 5.0}}}
+        )
     with pytest.raises(ValueError, match=r"outputs \[0, 1\] share their hyperparameters but not all have"):
         gp.fit_gp(x, y, is_direction=MASK, additive_columns=(0,), additive_outputs=[True, False], groups=[0, 0])
     with pytest.raises(ValueError, match="wind_term = 'damage' with share = 'all'"):

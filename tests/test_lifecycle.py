@@ -760,6 +760,8 @@ def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator,
         seen = ["wind_speed", "cos_wind_dir", "sin_wind_dir"]
         assert np.isfinite(wls.sel(gp_input=seen).values[is_dmg]).all()
         assert np.isinf(wls.drop_sel(gp_input=seen).values[is_dmg]).all()
+        gate = a["gp_wind_gate"].values  # the sea gate's scale, fitted within wind_gate's bounds
+        assert ((gate[is_dmg] >= 0.02) & (gate[is_dmg] <= 2.0)).all() and np.isinf(gate[~is_dmg]).all()
     assert a.attrs["gp_share"] == share and a.attrs["gp_mean"] == mean and a.attrs["gp_covariance"] == covariance
     dmg = [o for o in a["output"].values.astype(object) if o.startswith("damage")]
     same = [
@@ -778,7 +780,7 @@ def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator,
     changed = [v for v in a.data_vars if not a[v].equals(b[v])]
     assert changed and all(v.startswith("validation_") for v in changed), changed
     kept = ("gp_length_scale", "gp_noise_sd", "smoothing", "retransform_factor", "loo_error", "error_indicator")
-    for v in kept + (("gp_wind_sd", "gp_wind_length_scale") if wind != "none" else ()):
+    for v in kept + (("gp_wind_sd", "gp_wind_length_scale", "gp_wind_gate") if wind != "none" else ()):
         np.testing.assert_array_equal(a[v].values, b[v].values)
     np.testing.assert_array_equal(a["damage_sn"].values, b["damage_sn"].values)
 
@@ -886,10 +888,10 @@ def test_gp_per_output_choice_with_outputs_in_both_spaces():
     got = lifecycle.predict_outputs(mixed, at)
     np.testing.assert_array_equal(got[:, 0], lifecycle.predict_outputs(thrust, at)[:, 0])
     np.testing.assert_array_equal(got[:, 1], lifecycle.predict_outputs(paper, at)[:, 1])
-    inputs, ls, _, noise, _, wind_sd = lifecycle.adapters._gp_records(mixed)
+    inputs, ls, _, noise = lifecycle.adapters._gp_records(mixed)
     k = inputs.index("thrust")
     assert np.isnan(ls[1, k]) and ls[0, k] > 0 and not np.isnan(np.delete(ls, k, axis=1)).any()
-    assert wind_sd is None  # no wind term (lifecycle.rbf.gp.wind_term: none)
+    assert lifecycle.adapters._gp_wind_records(mixed) is None  # lifecycle.rbf.gp.wind_term: none
     np.testing.assert_array_equal(
         noise, [np.sqrt(thrust.models[0].noise_var[0]), np.sqrt(paper.models[0].noise_var[1])]
     )

@@ -16,7 +16,7 @@ Inputs
 Additive wind term (``lifecycle.rbf.gp.wind_term``, opt-in)
     ``f = f_all + f_wind``: beside the kernel of every coordinate, a second one of the same family
     on the wind speed and direction alone, with its own amplitude ``s_w`` and length scales
-    (:class:`~moorlife.gp.columns.OnColumns` in the fit). A line's tension variance is nearly a
+    (:class:`~moorlife.gp.kernels.OnColumns` in the fit). A line's tension variance is nearly a
     wind part plus a wave part; a product kernel cannot keep the damage flat in Hs where the
     wind drives the line and steep where the waves do.
 Hyperparameters
@@ -38,7 +38,7 @@ Back-transform of a ``log10`` output
     point and output, see :mod:`moorlife.gp.predict`).
 
 Modules: :mod:`~moorlife.gp.covariance` (the correlation families),
-:mod:`~moorlife.gp.columns` (a scikit-learn kernel of some input columns),
+:mod:`~moorlife.gp.kernels` (a scikit-learn kernel of some input columns),
 :mod:`~moorlife.gp.fit` (embedding, hyperparameters, conditioning, leave-one-out, the
 models of some outputs) and
 :mod:`~moorlife.gp.predict` (mean, latent variance, back-transform).

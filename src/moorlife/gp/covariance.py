@@ -18,11 +18,12 @@ from __future__ import annotations
 
 import numba as nb
 import numpy as np
+import numpy.typing as npt
 
 from moorlife.rbf.kernels import exp_parts
 from moorlife.space import sq_dist_block
 
-__all__ = ["GP_COVARIANCES", "covariance_code", "correlation"]
+__all__ = ["GP_COVARIANCES", "covariance_code", "correlation", "gate"]
 
 #: Covariance families, in the order of their integer codes (:func:`covariance_code`).
 GP_COVARIANCES: tuple[str, ...] = ("gaussian", "matern52", "matern32")
@@ -104,3 +105,21 @@ def correlation(za: np.ndarray, zb: np.ndarray, length_scale: np.ndarray, covari
     out = np.empty_like(d2)
     _correlation_block(d2, code, out, np.empty_like(d2))
     return out
+
+
+def gate(hs: npt.ArrayLike, scale: npt.ArrayLike) -> np.ndarray:
+    """The sea gate ``exp(-hs / scale)`` of the GP's additive wind term (:mod:`moorlife.gp.kernels`).
+
+    Parameters
+    ----------
+    hs : array_like
+        The embedded (range-normalised) significant wave height, 0 at the bottom of the
+        normalisation.
+    scale : array_like
+        In the same units (``inf``: no gate, 1 everywhere); broadcast against ``hs``.
+
+    Returns
+    -------
+    numpy.ndarray
+    """
+    return np.exp(-np.asarray(hs, dtype=float) / np.asarray(scale, dtype=float))

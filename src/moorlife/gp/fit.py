@@ -11,7 +11,7 @@ import numpy as np
 import numpy.typing as npt
 import scipy.linalg as sla
 
-from moorlife.gp.covariance import MATERN_NU, correlation, covariance_code
+from moorlife.gp.covariance import MATERN_NU, correlation, covariance_code, gate
 from moorlife.space import Space, as_points, fit_space
 
 __all__ = [
@@ -88,9 +88,15 @@ class GPModel:
         without it (``None``: no output has it).
     wind_var : numpy.ndarray, shape (n_out,), or None
         The additive term's signal variance (0 for an output without it). With it the
-        correlation of output ``j`` is ``rho_j + (wind_var_j / signal_var_j) rho_w,j`` and its
-        prior variance ``signal_var_j + wind_var_j``: ``B_j`` and the posterior mean and latent
-        variance above use that sum.
+        correlation of output ``j`` is ``rho_j + (wind_var_j / signal_var_j) g_j g_j' rho_w,j``
+        and its prior variance ``signal_var_j + wind_var_j g_j^2``: ``B_j`` and the posterior
+        mean and latent variance above use that sum.
+    wind_gate : numpy.ndarray, shape (n_out,), or None
+        The scale of the term's sea gate ``g_j(x) = exp(-z_hs / wind_gate_j)``
+        (:func:`moorlife.gp.kernels.gate`; ``z_hs`` the embedded column ``gate_column``; ``inf``:
+        no gate, ``g = 1``).
+    gate_column : int
+        The embedded column of the gate (-1: none).
     """
 
     space: Space
@@ -110,6 +116,8 @@ class GPModel:
     covariance: str = "gaussian"
     wind_length_scale: np.ndarray | None = None
     wind_var: np.ndarray | None = None
+    wind_gate: np.ndarray | None = None
+    gate_column: int = -1
 
     @property
     def n_outputs(self) -> int:
@@ -121,6 +129,13 @@ class GPModel:
         if self.wind_var is None:
             return np.zeros(self.n_outputs)
         return self.wind_var / self.signal_var
+
+    def gates(self, z: np.ndarray, outputs: npt.ArrayLike) -> np.ndarray:
+        """The sea gate of some outputs at embedded points ``z``: shape ``(n, len(outputs))``."""
+        o = np.asarray(outputs, dtype=np.int64)
+        if self.wind_gate is None or self.gate_column < 0:
+            return np.ones((z.shape[0], o.size))
+        return gate(z[:, self.gate_column, None], self.wind_gate[o][None, :])
 
 
 def select_outputs(model: GPModel, columns: npt.ArrayLike) -> GPModel:
@@ -155,6 +170,7 @@ def select_outputs(model: GPModel, columns: npt.ArrayLike) -> GPModel:
         slope=None if model.slope is None else model.slope[:, c],
         wind_length_scale=None if model.wind_length_scale is None else model.wind_length_scale[c],
         wind_var=None if model.wind_var is None else model.wind_var[c],
+        wind_gate=None if model.wind_gate is None else model.wind_gate[c],
     )
 
 
@@ -215,6 +231,8 @@ def fit_gp(
     covariance: str = "gaussian",
     additive_columns: Sequence[int] | None = None,
     additive_outputs: bool | npt.ArrayLike = True,
+    gate_column: int | None = None,
+    gate_scale: tuple[float, float, float] = (0.2, 0.02, 2.0),
 ) -> GPModel:
     """Fit one Gaussian process with a noise term per output column.
 
@@ -270,7 +288,7 @@ def fit_gp(
     additive_columns : sequence of int, optional
         The embedded coordinates (:func:`chord_embed`'s columns) of an additive term: the
         outputs of ``additive_outputs`` get the kernel ``C * k(l) + C_w * k_w(l_w) + White``,
-        ``k_w`` of the same family seeing these coordinates only (:class:`~moorlife.gp.columns.OnColumns`),
+        ``k_w`` of the same family seeing these coordinates only (:class:`~moorlife.gp.kernels.OnColumns`),
         with its own amplitude and length scales (the bounds of ``signal`` and ``length_scale``).
         A line's tension variance is nearly a wind part plus a wave part; the term lets the
         output follow the wind where the waves are small (``validation/reconstruction.md``,
@@ -278,6 +296,15 @@ def fit_gp(
     additive_outputs : bool or array_like of bool (n_out,)
         The outputs with the additive term (when ``additive_columns`` is given). The outputs of a
         ``groups`` label must all have it or all not.
+    gate_column : int, optional
+        The embedded column of the normalised wave height: the additive term is multiplied by
+        the sea gate ``g(x) g(x')``, ``g = exp(-z_hs / scale)`` (:class:`~moorlife.gp.kernels.SeaGate`),
+        so that it fades where the waves drive the output. Without it the term holds
+        everywhere, storms included (section 21 of ``validation/reconstruction.md``: it then
+        loses the storm hours).
+    gate_scale : tuple of float
+        ``(initial, min, max)`` of the gate's scale (embedded units: a fraction of the wave
+        height's normalisation span), fitted with the other hyperparameters.
 
     Returns
     -------
@@ -339,7 +366,7 @@ def fit_gp(
     add_cols, has_add = _additive(additive_columns, additive_outputs, p, n_out)
     k_add = None
     if add_cols is not None:
-        from moorlife.gp.columns import OnColumns
+        from moorlife.gp.kernels import OnColumns, SeaGate
 
         ls0w = np.full(add_cols.size, length_scale[0]) if kernel == "ard" else length_scale[0]
         shape_w = (
@@ -347,10 +374,19 @@ def fit_gp(
             if covariance == "gaussian"
             else Matern(ls0w, length_scale[1:], nu=MATERN_NU[covariance])
         )
-        wind = C(signal[0], signal[1:]) * OnColumns(shape_w, tuple(add_cols.tolist()))
-        k_add = C(signal[0], signal[1:]) * shape + wind + WhiteKernel(noise[0], noise[1:])
+        term = OnColumns(shape_w, tuple(add_cols.tolist()))
+        if gate_column is not None:
+            if not 0 <= gate_column < p or gate_column in add_cols:
+                raise ValueError(
+                    f"GP gate_column {gate_column}: need one of the {p} embedded coordinates, not the term's"
+                )
+            if not 0 < gate_scale[1] <= gate_scale[0] <= gate_scale[2]:
+                raise ValueError(f"GP gate_scale: need 0 < min <= initial <= max, got {gate_scale}")
+            term = SeaGate(term, int(gate_column), gate_scale[0], (gate_scale[1], gate_scale[2]))
+        k_add = C(signal[0], signal[1:]) * shape + C(signal[0], signal[1:]) * term + WhiteKernel(noise[0], noise[1:])
     wls = np.full((n_out, p), np.inf) if add_cols is not None else None
     wvar = np.zeros(n_out) if add_cols is not None else None
+    wgate = np.full(n_out, np.inf) if add_cols is not None else None
     for cols in _output_groups(groups, n_out):
         with_add = bool(has_add[cols[0]])
         if has_add[cols].any() and not has_add[cols].all():
@@ -375,11 +411,29 @@ def fit_gp(
         noi[cols] = kf.k2.noise_level * scale2
         ratio[cols] = noi[cols[0]] / sig[cols[0]]  # one value per group, so its outputs share B
         if with_add:
-            w = kf.k1.k2  # C_w * OnColumns(k_w(l_w))
-            wls[np.ix_(cols, add_cols)] = np.broadcast_to(w.k2.base.length_scale, (add_cols.size,))
+            w = kf.k1.k2  # C_w * [SeaGate of] OnColumns(k_w(l_w))
+            on = w.k2.base if gate_column is not None else w.k2
+            wls[np.ix_(cols, add_cols)] = np.broadcast_to(on.base.length_scale, (add_cols.size,))
             wvar[cols] = w.k1.constant_value * scale2
+            if gate_column is not None:
+                wgate[cols] = w.k2.scale
     return _condition(
-        space, z, y, ls, sig, noi, ratio, mean, logs, retransform, h, covariance, wind_ls=wls, wind_var=wvar
+        space,
+        z,
+        y,
+        ls,
+        sig,
+        noi,
+        ratio,
+        mean,
+        logs,
+        retransform,
+        h,
+        covariance,
+        wind_ls=wls,
+        wind_var=wvar,
+        wind_gate=wgate,
+        gate_column=-1 if gate_column is None or add_cols is None else int(gate_column),
     )
 
 
@@ -436,11 +490,14 @@ def _condition(
     *,
     wind_ls: np.ndarray | None = None,
     wind_var: np.ndarray | None = None,
+    wind_gate: np.ndarray | None = None,
+    gate_column: int = -1,
 ) -> GPModel:
     """Condition every output's process on all training states: weights, Cholesky factors, leave-one-out.
 
     ``B = R + ratio I`` (``R`` the correlation, ``ratio`` the noise over the signal variance;
-    with the additive term ``R + (wind_var / sig) R_w + ratio I``) is factored once per distinct
+    with the additive term ``R + (wind_var / sig) (g g') R_w + ratio I``, ``g`` the sea gate) is
+    factored once per distinct
     ``(length scales, ratio)``: the outputs of a group share it. With
     ``h`` (the linear prior mean's basis at the training states) the mean's coefficients are the
     generalised least-squares estimate ``(h' B^-1 h)^-1 h' B^-1 y`` and the leave-one-out
@@ -457,14 +514,15 @@ def _condition(
     for j in range(n_out):
         key = ls[j].tobytes() + np.float64(ratio[j]).tobytes()
         if wr[j] > 0:
-            key += wind_ls[j].tobytes() + np.float64(wr[j]).tobytes()
+            key += wind_ls[j].tobytes() + np.float64(wr[j]).tobytes() + np.float64(wind_gate[j]).tobytes()
         if key in done:
             first, d, bih, s_inv = done[key]
             chol[j] = chol[first]
         else:
             b = correlation(z, z, ls[j], covariance)
             if wr[j] > 0:
-                b += wr[j] * correlation(z, z, wind_ls[j], covariance)
+                g = _gate_of(z, gate_column, wind_gate[j])
+                b += wr[j] * np.outer(g, g) * correlation(z, z, wind_ls[j], covariance)
             b[np.diag_indices(m)] += ratio[j]
             chol[j] = sla.cholesky(b, lower=True, check_finite=False)
             l_inv, info = sla.lapack.dtrtri(chol[j], lower=1)
@@ -506,4 +564,11 @@ def _condition(
         covariance=covariance,
         wind_length_scale=wind_ls,
         wind_var=wind_var,
+        wind_gate=wind_gate,
+        gate_column=gate_column,
     )
+
+
+def _gate_of(z: np.ndarray, column: int, scale: float) -> np.ndarray:
+    """The sea gate at the embedded points (ones without a gate)."""
+    return np.ones(z.shape[0]) if column < 0 else gate(z[:, column], scale)

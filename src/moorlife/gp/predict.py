@@ -162,17 +162,19 @@ def predict_latent(
     wr = model.wind_ratio
     add = np.flatnonzero(wr > 0)
     # the additive term as more outputs of the compiled kernel: its length scales (inf: a
-    # coordinate it does not see, so 1 / l^2 = 0) and the weights times wind_var / signal_var,
-    # added to their output afterwards
+    # coordinate it does not see, so 1 / l^2 = 0) and the weights times wind_var / signal_var
+    # and the sea gate at the centres; times the gate at the point, added to their output afterwards
     ls_all = model.length_scale if add.size == 0 else np.vstack([model.length_scale, model.wind_length_scale[add]])
-    w_all = model.weights if add.size == 0 else np.hstack([model.weights, model.weights[:, add] * wr[add]])
+    w_all = model.weights
+    if add.size:
+        w_all = np.hstack([model.weights, model.weights[:, add] * wr[add] * model.gates(model.centres, add)])
     gptr, gcols = _groups(ls_all)
     s2 = np.ascontiguousarray(ls_all[gcols[gptr[:-1]]] ** -2.0)
     mean = np.zeros((n, ls_all.shape[0]))
     w = np.ascontiguousarray(w_all.T)
     _mean_rows(z, s2, np.ascontiguousarray(model.centres.T), gptr, gcols, w, covariance_code(model.covariance), mean)
     if add.size:
-        mean[:, add] += mean[:, n_out:]
+        mean[:, add] += mean[:, n_out:] * model.gates(z, add)
         mean = np.ascontiguousarray(mean[:, :n_out])
     mean += model.mean
     if model.slope is not None:
@@ -186,10 +188,14 @@ def predict_latent(
             for s in range(0, n, rows):
                 e = min(n, s + rows)
                 k = correlation(z[s:e], model.centres, model.length_scale[j], model.covariance)
+                prior = 1.0
                 if wr[j] > 0:
-                    k += wr[j] * correlation(z[s:e], model.centres, model.wind_length_scale[j], model.covariance)
+                    gi, gc = model.gates(z[s:e], [j])[:, 0], model.gates(model.centres, [j])[:, 0]
+                    rw = correlation(z[s:e], model.centres, model.wind_length_scale[j], model.covariance)
+                    k += wr[j] * np.outer(gi, gc) * rw
+                    prior = 1.0 + wr[j] * gi**2
                 v = sla.solve_triangular(model.chol[j], k.T, lower=True, check_finite=False)
-                var[s:e, j] = np.maximum(model.signal_var[j] * (1.0 + wr[j] - np.einsum("ij,ij->j", v, v)), 0.0)
+                var[s:e, j] = np.maximum(model.signal_var[j] * (prior - np.einsum("ij,ij->j", v, v)), 0.0)
     return mean, var
 
 

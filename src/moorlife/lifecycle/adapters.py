@@ -96,7 +96,7 @@ def _fit_vars(out: xr.Dataset, model: Reconstruction, x_train: np.ndarray, ids: 
     out["train_points"] = (("train", "metocean_var"), x_train, _a("training sea states (physical units)"))
     out["loo_error"] = (("train", "output"), model.loo_error, _a("leave-one-out residual per training state"))
     if model.method == "gp":
-        inputs, ls, sig, noise, wls, wsd = _gp_records(model)
+        inputs, ls, sig, noise = _gp_records(model)
         out = out.assign_coords(gp_input=inputs)
         out["gp_length_scale"] = (
             ("output", "gp_input"),
@@ -105,15 +105,25 @@ def _fit_vars(out: xr.Dataset, model: Reconstruction, x_train: np.ndarray, ids: 
         )
         out["gp_signal_sd"] = ("output", sig, _a("GP signal standard deviation (transformed units)"))
         out["gp_noise_sd"] = ("output", noise, _a("GP noise standard deviation (transformed units)"))
-        if wsd is not None:  # lifecycle.rbf.gp.wind_term
+        wind = _gp_wind_records(model)
+        if wind is not None:  # lifecycle.rbf.gp.wind_term
             out["gp_wind_length_scale"] = (
                 ("output", "gp_input"),
-                wls,
+                wind[0],
                 _a(
                     "GP wind term's length scale (normalised input units; inf: not seen by the term; NaN: not an input)"
                 ),
             )
-            out["gp_wind_sd"] = ("output", wsd, _a("GP wind term's standard deviation (transformed units; 0: none)"))
+            out["gp_wind_sd"] = (
+                "output",
+                wind[1],
+                _a("GP wind term's standard deviation (transformed units; 0: none)"),
+            )
+            out["gp_wind_gate"] = (
+                "output",
+                wind[2],
+                _a("GP wind term's sea-gate scale, exp(-hs / scale) (normalised hs units; inf: no term)"),
+            )
     return out
 
 
@@ -123,26 +133,34 @@ def _gp_inputs(g: gp.GPModel) -> list[str]:
     return gp.embedded_names(variables, g.space.is_direction)
 
 
-def _gp_records(
-    model: Reconstruction,
-) -> tuple[list[str], np.ndarray, np.ndarray, np.ndarray, np.ndarray | None, np.ndarray | None]:
-    """Every output's GP length scales on the union of the inputs in use, signal and noise sd,
-    and the wind term's length scales and sd (None when no model has the term)."""
+def _gp_records(model: Reconstruction) -> tuple[list[str], np.ndarray, np.ndarray, np.ndarray]:
+    """Every output's GP length scales on the union of the inputs in use, signal and noise sd."""
     own = [_gp_inputs(g) for g in model.models]
     inputs = max(own, key=len)  # the thrust space's inputs hold the paper space's
     n = model.n_outputs
     ls = np.full((n, len(inputs)), np.nan)
     sig, noise = np.empty(n), np.empty(n)
-    wind = any(g.wind_var is not None for g in model.models)
-    wls, wsd = (np.full((n, len(inputs)), np.nan), np.zeros(n)) if wind else (None, None)
     for g, cols, names_g in zip(model.models, model.columns, own):
         where = [inputs.index(k) for k in names_g]
         ls[np.ix_(cols, where)] = g.length_scale
         sig[cols], noise[cols] = np.sqrt(g.signal_var), np.sqrt(g.noise_var)
+    return inputs, ls, sig, noise
+
+
+def _gp_wind_records(model: Reconstruction) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """The wind term's length scales (on :func:`_gp_records`'s inputs), sd and sea-gate scale of
+    every output (``lifecycle.rbf.gp.wind_term``); None when no model has the term."""
+    if all(g.wind_var is None for g in model.models):
+        return None
+    own = [_gp_inputs(g) for g in model.models]
+    inputs = max(own, key=len)
+    n = model.n_outputs
+    wls, wsd, gate = np.full((n, len(inputs)), np.nan), np.zeros(n), np.full(n, np.inf)
+    for g, cols, names_g in zip(model.models, model.columns, own):
         if g.wind_var is not None:
-            wls[np.ix_(cols, where)] = g.wind_length_scale
-            wsd[cols] = np.sqrt(g.wind_var)
-    return inputs, ls, sig, noise, wls, wsd
+            wls[np.ix_(cols, [inputs.index(k) for k in names_g])] = g.wind_length_scale
+            wsd[cols], gate[cols] = np.sqrt(g.wind_var), g.wind_gate
+    return wls, wsd, gate
 
 
 def _validation_vars(
@@ -268,7 +286,7 @@ def reconstruct_lifecycle(
     model = fit_outputs(x[train], y[train], cols, settings, lo=lo, span=span, thrust=thrust)
     labels = [_label(c) for c in cols]
     if model.method == "gp":
-        inputs, ls_all, sig, noise, wls, wsd = _gp_records(model)
+        inputs, ls_all, sig, noise = _gp_records(model)
         log.info(
             "GP per output: length scales on %s, signal sd, noise sd (transformed units):\n%s",
             inputs,
@@ -277,13 +295,14 @@ def reconstruct_lifecycle(
                 for lab, ls, sv, nv in zip(labels, ls_all, sig, noise)
             ),
         )
-        if wsd is not None:
+        wind = _gp_wind_records(model)
+        if wind is not None:
             log.info(
-                "GP wind term per output: length scales on %s (inf: not seen), sd:\n%s",
+                "GP wind term per output: length scales on %s (inf: not seen), sd, sea-gate scale:\n%s",
                 inputs,
                 "\n".join(
-                    f"  {lab:<18} {np.array2string(ls, precision=3)} {sd:.4g}"
-                    for lab, ls, sd in zip(labels, wls, wsd)
+                    f"  {lab:<18} {np.array2string(ls, precision=3)} {sd:.4g} {gs:.4g}"
+                    for lab, ls, sd, gs in zip(labels, *wind)
                     if sd > 0
                 ),
             )

@@ -458,16 +458,24 @@ def gp_groups(cols: Sequence[tuple[str, str | None]], share: str) -> np.ndarray 
     return np.unique(keys, return_inverse=True)[1].reshape(-1).astype(np.int64)
 
 
-def wind_columns(is_direction: npt.ArrayLike) -> tuple[int, ...]:
-    """The GP's embedded coordinates of the wind speed and direction (``gp.wind_term``).
-
-    ``is_direction`` is the space's mask: ``names.METOCEAN_VARS`` then, in the thrust space, the
-    thrust (:func:`moorlife.lifecycle.spaces.space_inputs`)."""
+def _embedded(is_direction: npt.ArrayLike) -> list[str]:
+    """The GP's embedded coordinates of a space, by its mask: ``names.METOCEAN_VARS`` then, in
+    the thrust space, the thrust (:func:`moorlife.lifecycle.spaces.space_inputs`)."""
     mask = np.asarray(is_direction, dtype=bool)
     variables = list(names.METOCEAN_VARS) + [names.RBF_SPACE_THRUST] * (mask.size - len(names.METOCEAN_VARS))
-    emb = gp.embedded_names(variables, mask)
+    return gp.embedded_names(variables, mask)
+
+
+def wind_columns(is_direction: npt.ArrayLike) -> tuple[int, ...]:
+    """The GP's embedded coordinates of the wind speed and direction (``gp.wind_term``)."""
+    emb = _embedded(is_direction)
     speed, direction = names.METOCEAN_VARS[:2]
     return tuple(emb.index(k) for k in (speed, f"cos_{direction}", f"sin_{direction}"))
+
+
+def wave_height_column(is_direction: npt.ArrayLike) -> int:
+    """The GP's embedded coordinate of the significant wave height (the wind term's sea gate)."""
+    return _embedded(is_direction).index(names.METOCEAN_VARS[2])
 
 
 def _fit_gp(
@@ -589,6 +597,8 @@ def _gp_in(
         covariance=g.covariance,
         additive_columns=None if g.wind_term == "none" else wind_columns(mask),
         additive_outputs=[g.wind_term == "all" or c[0].startswith("damage") for c in cols],
+        gate_column=wave_height_column(mask),
+        gate_scale=g.wind_gate.astuple(),
     )
     e = model.loo_error.copy()
     if logs.any():

@@ -50,6 +50,8 @@ class GPSettings:
     wind_term : {"none", "damage", "all"}
         The outputs with an additive term of the wind speed and direction
         (:func:`moorlife.gp.fit_gp`'s ``additive_columns``).
+    wind_gate : GPBounds
+        Start and bounds of the term's sea-gate scale (:func:`moorlife.gp.fit_gp`'s ``gate_scale``).
     """
 
     kernel: str
@@ -66,6 +68,7 @@ class GPSettings:
     share: str
     mean: str
     wind_term: str
+    wind_gate: GPBounds
 
     @classmethod
     def from_section(cls, g: Mapping[str, Any], source: str = "config.yaml") -> GPSettings:
@@ -78,7 +81,7 @@ class GPSettings:
             is asked with ``share: all`` (one group cannot mix outputs with and without the term).
         """
         triples = {}
-        for key in ("length_scale", "signal", "noise"):
+        for key in ("length_scale", "signal", "noise", "wind_gate"):
             t = GPBounds(float(g[key]["initial"]), float(g[key]["min"]), float(g[key]["max"]))
             if not t.min <= t.initial <= t.max:
                 raise ValueError(f"{source}: lifecycle.rbf.gp.{key} needs min <= initial <= max, got {g[key]}")
@@ -98,6 +101,7 @@ class GPSettings:
             share=str(g["share"]),
             mean=str(g["mean"]),
             wind_term=_wind_term(g, source),
+            wind_gate=triples["wind_gate"],
         )
 
 
