@@ -456,6 +456,29 @@ def test_wind_term_recovers_a_sum_of_a_wind_and_a_wave_part_better_than_the_prod
     np.testing.assert_array_equal(sub.wind_length_scale, add.wind_length_scale)
 
 
+def test_wind_term_hyperparameters_on_their_own_subsample():
+    """additive_subsample: the outputs with the term fit their hyperparameters on it, the others
+    on subsample, each as a fit of its own with that subsample would (the same draw)."""
+    x = _states(90, 28)
+    y = np.column_stack([_wind_plus_waves(x), _smooth(x)]) + np.random.default_rng(29).normal(0, 0.02, (90, 2))
+    kw = dict(is_direction=MASK, covariance="matern52", gate_column=1)
+    both = gp.fit_gp(
+        x, y, additive_columns=WIND_COLUMNS, additive_outputs=[True, False], subsample=40, additive_subsample=0, **kw
+    )
+    wind_all = gp.fit_gp(x, y[:, 0], additive_columns=WIND_COLUMNS, subsample=0, **kw)
+    plain_40 = gp.fit_gp(x, y[:, 1], subsample=40, **kw)
+    for f in ("length_scale", "signal_var", "noise_var", "wind_var", "wind_gate"):
+        np.testing.assert_array_equal(getattr(both, f)[0], getattr(wind_all, f)[0], err_msg=f)
+    for f in ("length_scale", "signal_var", "noise_var"):
+        np.testing.assert_array_equal(getattr(both, f)[1], getattr(plain_40, f)[0], err_msg=f)
+    same = gp.fit_gp(x, y[:, 0], additive_columns=WIND_COLUMNS, subsample=40, **kw)  # default: subsample's draw
+    assert not np.array_equal(same.length_scale, wind_all.length_scale)
+    np.testing.assert_array_equal(
+        same.length_scale,
+        gp.fit_gp(x, y[:, 0], additive_columns=WIND_COLUMNS, subsample=40, additive_subsample=40, **kw).length_scale,
+    )
+
+
 def test_wind_term_bad_settings_are_refused():
     x = _states(30, 26)
     y = np.column_stack([x[:, 2], x[:, 3]])

@@ -233,6 +233,7 @@ def fit_gp(
     additive_outputs: bool | npt.ArrayLike = True,
     gate_column: int | None = None,
     gate_scale: tuple[float, float, float] = (0.2, 0.02, 2.0),
+    additive_subsample: int | None = None,
 ) -> GPModel:
     """Fit one Gaussian process with a noise term per output column.
 
@@ -305,6 +306,10 @@ def fit_gp(
     gate_scale : tuple of float
         ``(initial, min, max)`` of the gate's scale (embedded units: a fraction of the wave
         height's normalisation span), fitted with the other hyperparameters.
+    additive_subsample : int, optional
+        Training states of the hyperparameter fit of the outputs with the additive term (0: all;
+        default ``subsample``), drawn as ``subsample``'s: its five more hyperparameters want
+        more states than the plain kernel's, and the other outputs need not pay for them.
 
     Returns
     -------
@@ -348,9 +353,8 @@ def fit_gp(
     z = chord_embed(x, space)
     m, p = z.shape
     n_out = y.shape[1]
-    sub = np.arange(m)
-    if 0 < subsample < m:
-        sub = np.sort(np.random.default_rng(seed).choice(m, int(subsample), replace=False))
+    sub = _subsample(m, subsample, seed)
+    sub_add = sub if additive_subsample is None else _subsample(m, additive_subsample, seed)
     ls0 = np.full(p, length_scale[0]) if kernel == "ard" else length_scale[0]
     ls = np.empty((n_out, p))
     sig, noi, ratio, mean = np.empty(n_out), np.empty(n_out), np.empty(n_out), y.mean(axis=0)
@@ -397,9 +401,10 @@ def fit_gp(
         gpr = GaussianProcessRegressor(
             kern, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed
         )
+        rows = sub_add if with_add else sub
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", ConvergenceWarning)
-            gpr.fit(z[sub], yh[sub, cols[0]] if cols.size == 1 else yh[np.ix_(sub, cols)])
+            gpr.fit(z[rows], yh[rows, cols[0]] if cols.size == 1 else yh[np.ix_(rows, cols)])
         for w in caught:
             if issubclass(w.category, ConvergenceWarning):
                 log.info("GP outputs %s: %s", cols.tolist(), str(w.message).splitlines()[0])
@@ -448,6 +453,13 @@ def _additive(
         raise ValueError(f"GP additive_columns {c.tolist()}: need distinct columns of the {p} embedded coordinates")
     has = np.broadcast_to(np.asarray(outputs, dtype=bool), (n_out,)).copy()
     return (c, has) if has.any() else (None, has)
+
+
+def _subsample(m: int, n: int, seed: int) -> np.ndarray:
+    """The rows of the hyperparameter fit: ``n`` of ``m`` drawn with ``seed``, sorted (0 or ``>= m``: all)."""
+    if 0 < n < m:
+        return np.sort(np.random.default_rng(seed).choice(m, int(n), replace=False))
+    return np.arange(m)
 
 
 def _output_groups(groups: npt.ArrayLike | None, n_out: int) -> list[np.ndarray]:

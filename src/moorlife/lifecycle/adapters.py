@@ -390,6 +390,7 @@ def reconstruct_lifecycle(
         out.attrs.update({"gp_share": g.share, "gp_mean": g.mean, "gp_covariance": g.covariance})
         if g.wind_term != "none":  # the GP stores without the term stay as they were
             out.attrs["gp_wind_term"] = g.wind_term
+            out.attrs["gp_wind_subsample"] = g.wind_subsample
     if thrust is not None and settings.thrust_statistic != "steady":  # the steady curve's stores as they were
         out.attrs.update(
             {

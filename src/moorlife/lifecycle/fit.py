@@ -599,6 +599,7 @@ def _gp_in(
         additive_outputs=[g.wind_term == "all" or c[0].startswith("damage") for c in cols],
         gate_column=wave_height_column(mask),
         gate_scale=g.wind_gate.astuple(),
+        additive_subsample=g.wind_subsample,
     )
     e = model.loo_error.copy()
     if logs.any():

@@ -52,6 +52,8 @@ class GPSettings:
         (:func:`moorlife.gp.fit_gp`'s ``additive_columns``).
     wind_gate : GPBounds
         Start and bounds of the term's sea-gate scale (:func:`moorlife.gp.fit_gp`'s ``gate_scale``).
+    wind_subsample : int
+        Training states of the hyperparameter fit of the outputs with the term (0: all).
     """
 
     kernel: str
@@ -69,6 +71,7 @@ class GPSettings:
     mean: str
     wind_term: str
     wind_gate: GPBounds
+    wind_subsample: int
 
     @classmethod
     def from_section(cls, g: Mapping[str, Any], source: str = "config.yaml") -> GPSettings:
@@ -102,6 +105,7 @@ class GPSettings:
             mean=str(g["mean"]),
             wind_term=_wind_term(g, source),
             wind_gate=triples["wind_gate"],
+            wind_subsample=int(g["wind_subsample"]),
         )
 
 
