@@ -298,6 +298,7 @@ def choice_section(pts, train, valid, y, y_val, labels, lo, span, gp_variants=Fa
                 "gp, share all": {"method": "gp", "gp": {"share": "all"}},
                 "gp, matern52": {"method": "gp", "gp": {"covariance": "matern52"}},
                 "gp, matern52, share var.": {"method": "gp", "gp": {"covariance": "matern52", "share": "variable"}},
+                "gp, matern52, wind term": {"method": "gp", "gp": {"covariance": "matern52", "wind_term": "damage"}},
             }
         )
     table = {}
