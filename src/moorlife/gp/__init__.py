@@ -15,12 +15,13 @@ Inputs
     order. Optionally the rotor thrust ``T(W)`` as one more scalar (:mod:`moorlife.lifecycle.spaces`).
 Additive wind term (``lifecycle.rbf.gp.wind_term``, opt-in)
     ``f = f_all + f_wind``: beside the kernel of every coordinate, a second one of the same family
-    on the wind speed and direction alone, with its own amplitude ``s_w`` and length scales
-    (:class:`~moorlife.gp.kernels.OnColumns` in the fit). A line's tension variance is nearly a
+    on the wind speed and direction alone, with its own amplitude ``s_w`` and length scales,
+    faded by the sea gate ``exp(-z_hs / scale)`` (:class:`~moorlife.gp.kernels.OnColumns` and
+    :class:`~moorlife.gp.kernels.SeaGate` in the fit). A line's tension variance is nearly a
     wind part plus a wave part; a product kernel cannot keep the damage flat in Hs where the
     wind drives the line and steep where the waves do.
 Hyperparameters
-    ``s_f``, ``l`` and ``s_n`` (and ``s_w``, ``l_w``) per output by the maximum of the log marginal likelihood,
+    ``s_f``, ``l`` and ``s_n`` (and ``s_w``, ``l_w``, the gate's scale) per output by the maximum of the log marginal likelihood,
     scikit-learn's :class:`~sklearn.gaussian_process.GaussianProcessRegressor` (L-BFGS-B, optional
     seeded restarts), on all training states or a seeded subsample of them (the cost is cubic).
 Conditioning
@@ -37,8 +38,8 @@ Back-transform of a ``log10`` output
     constant per output) or ``predictive`` (both terms; ``s^2(x)`` costs a triangular solve per
     point and output, see :mod:`moorlife.gp.predict`).
 
-Modules: :mod:`~moorlife.gp.covariance` (the correlation families),
-:mod:`~moorlife.gp.kernels` (a scikit-learn kernel of some input columns),
+Modules: :mod:`~moorlife.gp.covariance` (the correlation families and the sea gate),
+:mod:`~moorlife.gp.kernels` (scikit-learn kernels of some input columns, and gated by the sea),
 :mod:`~moorlife.gp.fit` (embedding, hyperparameters, conditioning, leave-one-out, the
 models of some outputs) and
 :mod:`~moorlife.gp.predict` (mean, latent variance, back-transform).

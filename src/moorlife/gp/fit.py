@@ -93,7 +93,7 @@ class GPModel:
         mean and latent variance above use that sum.
     wind_gate : numpy.ndarray, shape (n_out,), or None
         The scale of the term's sea gate ``g_j(x) = exp(-z_hs / wind_gate_j)``
-        (:func:`moorlife.gp.kernels.gate`; ``z_hs`` the embedded column ``gate_column``; ``inf``:
+        (:func:`moorlife.gp.covariance.gate`; ``z_hs`` the embedded column ``gate_column``; ``inf``:
         no gate, ``g = 1``).
     gate_column : int
         The embedded column of the gate (-1: none).
@@ -336,7 +336,8 @@ def fit_gp(
     covariance_code(covariance)  # refuses an unknown family
     if retransform not in GP_RETRANSFORMS:
         raise ValueError(f"unknown GP back-transform {retransform!r}; expected one of {list(GP_RETRANSFORMS)}")
-    for name, (init, low, high) in (("length_scale", length_scale), ("signal", signal), ("noise", noise)):
+    bounded = (("length_scale", length_scale), ("signal", signal), ("noise", noise), ("gate_scale", gate_scale))
+    for name, (init, low, high) in bounded:
         if not 0 < low <= init <= high:
             raise ValueError(f"GP {name}: need 0 < min <= initial <= max, got {init}, {low}, {high}")
     x = as_points(points)
@@ -355,37 +356,31 @@ def fit_gp(
     n_out = y.shape[1]
     sub = _subsample(m, subsample, seed)
     sub_add = sub if additive_subsample is None else _subsample(m, additive_subsample, seed)
-    ls0 = np.full(p, length_scale[0]) if kernel == "ard" else length_scale[0]
+
+    def shape_of(n_dims: int):  # the correlation family, one length scale per coordinate (ard) or one
+        ls0 = np.full(n_dims, length_scale[0]) if kernel == "ard" else length_scale[0]
+        if covariance == "gaussian":
+            return RBF(ls0, length_scale[1:])
+        return Matern(ls0, length_scale[1:], nu=MATERN_NU[covariance])
+
     ls = np.empty((n_out, p))
     sig, noi, ratio, mean = np.empty(n_out), np.empty(n_out), np.empty(n_out), y.mean(axis=0)
     h = np.column_stack([np.ones(m), z]) if prior_mean == "linear" else None
     # the hyperparameters' data: the values, or their residuals from the least-squares linear mean
     yh = y if h is None else y - h @ np.linalg.lstsq(h, y, rcond=None)[0]
-    shape = (
-        RBF(ls0, length_scale[1:])
-        if covariance == "gaussian"
-        else Matern(ls0, length_scale[1:], nu=MATERN_NU[covariance])
-    )
+    shape = shape_of(p)
     k = C(signal[0], signal[1:]) * shape + WhiteKernel(noise[0], noise[1:])  # cloned by every fit
     add_cols, has_add = _additive(additive_columns, additive_outputs, p, n_out)
     k_add = None
     if add_cols is not None:
         from moorlife.gp.kernels import OnColumns, SeaGate
 
-        ls0w = np.full(add_cols.size, length_scale[0]) if kernel == "ard" else length_scale[0]
-        shape_w = (
-            RBF(ls0w, length_scale[1:])
-            if covariance == "gaussian"
-            else Matern(ls0w, length_scale[1:], nu=MATERN_NU[covariance])
-        )
-        term = OnColumns(shape_w, tuple(add_cols.tolist()))
+        term = OnColumns(shape_of(add_cols.size), tuple(add_cols.tolist()))
         if gate_column is not None:
             if not 0 <= gate_column < p or gate_column in add_cols:
                 raise ValueError(
                     f"GP gate_column {gate_column}: need one of the {p} embedded coordinates, not the term's"
                 )
-            if not 0 < gate_scale[1] <= gate_scale[0] <= gate_scale[2]:
-                raise ValueError(f"GP gate_scale: need 0 < min <= initial <= max, got {gate_scale}")
             term = SeaGate(term, int(gate_column), gate_scale[0], (gate_scale[1], gate_scale[2]))
         k_add = C(signal[0], signal[1:]) * shape + C(signal[0], signal[1:]) * term + WhiteKernel(noise[0], noise[1:])
     wls = np.full((n_out, p), np.inf) if add_cols is not None else None
@@ -509,8 +504,7 @@ def _condition(
 
     ``B = R + ratio I`` (``R`` the correlation, ``ratio`` the noise over the signal variance;
     with the additive term ``R + (wind_var / sig) (g g') R_w + ratio I``, ``g`` the sea gate) is
-    factored once per distinct
-    ``(length scales, ratio)``: the outputs of a group share it. With
+    factored once per distinct ``(length scales, ratio)``: the outputs of a group share it. With
     ``h`` (the linear prior mean's basis at the training states) the mean's coefficients are the
     generalised least-squares estimate ``(h' B^-1 h)^-1 h' B^-1 y`` and the leave-one-out
     residuals divide by the diagonal of ``B^-1 - B^-1 h (h' B^-1 h)^-1 h' B^-1``."""

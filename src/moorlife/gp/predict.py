@@ -185,12 +185,13 @@ def predict_latent(
             raise ValueError("the latent variance of a GP with a linear prior mean is not available")
         rows = max(1, min(int(chunk_rows), _CACHE_ROWS))
         for j in np.flatnonzero(want):
+            gc = model.gates(model.centres, [j])[:, 0]  # the sea gate at the centres, once per output
             for s in range(0, n, rows):
                 e = min(n, s + rows)
                 k = correlation(z[s:e], model.centres, model.length_scale[j], model.covariance)
                 prior = 1.0
                 if wr[j] > 0:
-                    gi, gc = model.gates(z[s:e], [j])[:, 0], model.gates(model.centres, [j])[:, 0]
+                    gi = model.gates(z[s:e], [j])[:, 0]
                     rw = correlation(z[s:e], model.centres, model.wind_length_scale[j], model.covariance)
                     k += wr[j] * np.outer(gi, gc) * rw
                     prior = 1.0 + wr[j] * gi**2

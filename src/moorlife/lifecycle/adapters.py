@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from moorlife import fatigue, gp, names
+from moorlife import fatigue, names
 from moorlife.lifecycle.damage import (
     DAMAGE_VARS,
     HOURS_PER_YEAR,
@@ -25,7 +25,14 @@ from moorlife.lifecycle.damage import (
     discrete_damage,
     life_damage,
 )
-from moorlife.lifecycle.fit import Reconstruction, fit_outputs, loo_errors_in_units, predict_outputs, validation_metrics
+from moorlife.lifecycle.fit import (
+    Reconstruction,
+    fit_outputs,
+    gp_input_names,
+    loo_errors_in_units,
+    predict_outputs,
+    validation_metrics,
+)
 from moorlife.lifecycle.outputs import (
     _label,
     output_columns,
@@ -127,22 +134,22 @@ def _fit_vars(out: xr.Dataset, model: Reconstruction, x_train: np.ndarray, ids: 
     return out
 
 
-def _gp_inputs(g: gp.GPModel) -> list[str]:
-    """The embedded input names of one GP (the thrust coordinate when its space has six)."""
-    variables = list(names.METOCEAN_VARS) + ([names.RBF_SPACE_THRUST] if g.space.scale.size > 5 else [])
-    return gp.embedded_names(variables, g.space.is_direction)
+def _gp_layout(model: Reconstruction) -> tuple[list[str], list[list[int]]]:
+    """The union of the GPs' embedded inputs (the thrust space's hold the paper space's), and
+    where each GP's own inputs sit in it (:func:`moorlife.lifecycle.fit.gp_input_names`)."""
+    own = [gp_input_names(g.space.is_direction) for g in model.models]
+    inputs = max(own, key=len)
+    return inputs, [[inputs.index(k) for k in names_g] for names_g in own]
 
 
 def _gp_records(model: Reconstruction) -> tuple[list[str], np.ndarray, np.ndarray, np.ndarray]:
     """Every output's GP length scales on the union of the inputs in use, signal and noise sd."""
-    own = [_gp_inputs(g) for g in model.models]
-    inputs = max(own, key=len)  # the thrust space's inputs hold the paper space's
+    inputs, where = _gp_layout(model)
     n = model.n_outputs
     ls = np.full((n, len(inputs)), np.nan)
     sig, noise = np.empty(n), np.empty(n)
-    for g, cols, names_g in zip(model.models, model.columns, own):
-        where = [inputs.index(k) for k in names_g]
-        ls[np.ix_(cols, where)] = g.length_scale
+    for g, cols, w in zip(model.models, model.columns, where):
+        ls[np.ix_(cols, w)] = g.length_scale
         sig[cols], noise[cols] = np.sqrt(g.signal_var), np.sqrt(g.noise_var)
     return inputs, ls, sig, noise
 
@@ -152,13 +159,12 @@ def _gp_wind_records(model: Reconstruction) -> tuple[np.ndarray, np.ndarray, np.
     every output (``lifecycle.rbf.gp.wind_term``); None when no model has the term."""
     if all(g.wind_var is None for g in model.models):
         return None
-    own = [_gp_inputs(g) for g in model.models]
-    inputs = max(own, key=len)
+    inputs, where = _gp_layout(model)
     n = model.n_outputs
     wls, wsd, gate = np.full((n, len(inputs)), np.nan), np.zeros(n), np.full(n, np.inf)
-    for g, cols, names_g in zip(model.models, model.columns, own):
+    for g, cols, w in zip(model.models, model.columns, where):
         if g.wind_var is not None:
-            wls[np.ix_(cols, [inputs.index(k) for k in names_g])] = g.wind_length_scale
+            wls[np.ix_(cols, w)] = g.wind_length_scale
             wsd[cols], gate[cols] = np.sqrt(g.wind_var), g.wind_gate
     return wls, wsd, gate
 

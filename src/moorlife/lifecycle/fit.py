@@ -458,7 +458,7 @@ def gp_groups(cols: Sequence[tuple[str, str | None]], share: str) -> np.ndarray 
     return np.unique(keys, return_inverse=True)[1].reshape(-1).astype(np.int64)
 
 
-def _embedded(is_direction: npt.ArrayLike) -> list[str]:
+def gp_input_names(is_direction: npt.ArrayLike) -> list[str]:
     """The GP's embedded coordinates of a space, by its mask: ``names.METOCEAN_VARS`` then, in
     the thrust space, the thrust (:func:`moorlife.lifecycle.spaces.space_inputs`)."""
     mask = np.asarray(is_direction, dtype=bool)
@@ -468,14 +468,14 @@ def _embedded(is_direction: npt.ArrayLike) -> list[str]:
 
 def wind_columns(is_direction: npt.ArrayLike) -> tuple[int, ...]:
     """The GP's embedded coordinates of the wind speed and direction (``gp.wind_term``)."""
-    emb = _embedded(is_direction)
+    emb = gp_input_names(is_direction)
     speed, direction = names.METOCEAN_VARS[:2]
     return tuple(emb.index(k) for k in (speed, f"cos_{direction}", f"sin_{direction}"))
 
 
 def wave_height_column(is_direction: npt.ArrayLike) -> int:
     """The GP's embedded coordinate of the significant wave height (the wind term's sea gate)."""
-    return _embedded(is_direction).index(names.METOCEAN_VARS[2])
+    return gp_input_names(is_direction).index(names.METOCEAN_VARS[2])
 
 
 def _fit_gp(

@@ -223,8 +223,9 @@ def choose_candidates(rms: np.ndarray, share_tol: float = 0.0) -> np.ndarray:
     """
     # a NaN would propagate through the minimum, match no candidate, and the cover never end
     rms = np.where(np.isfinite(rms), rms, np.inf)
-    if np.isinf(rms).all(axis=0).any():
-        bad = int(np.flatnonzero(np.isinf(rms).all(axis=0))[0])
+    unusable = np.isinf(rms).all(axis=0)
+    if unusable.any():
+        bad = int(np.flatnonzero(unusable)[0])
         raise ValueError(f"output {bad}: no candidate has a finite leave-one-out RMS")
     best = np.min(rms, axis=0)
     ok = rms <= best * (1.0 + share_tol) if share_tol > 0 else rms == best
