@@ -504,3 +504,59 @@ def test_wind_term_bad_settings_are_refused():
         lifecycle.RBFSettings.from_config({"method": "gp", "gp": {"wind_term": "all", "share": "all"}}).gp.wind_term
         == "all"
     )
+
+
+def test_outputs_a_constant_factor_apart_share_one_hyperparameter_fit(monkeypatch):
+    """Outputs whose standardised fit data are equal (a constant factor apart, log10: a constant
+    apart, as the S-N and T-N damage of a line with equal slopes) take the first one's
+    hyperparameters without a second fit: the same optimum, the same Cholesky factor and kernel
+    row, each output its own scale. Outputs that differ by more than rounding are fitted apart."""
+    x = _states(90, 30)
+    rng = np.random.default_rng(31)
+    d = np.exp(_smooth(x) + rng.normal(0, 0.05, 90))
+    y = np.column_stack([d, 4.2 * d, np.exp(np.sin(x[:, 3])), 4.2 * d * (1 + rng.normal(0, 1e-6, 90))])
+    calls = []
+    fit = GaussianProcessRegressor.fit
+    monkeypatch.setattr(GaussianProcessRegressor, "fit", lambda self, *a: calls.append(1) or fit(self, *a))
+    m = gp.fit_gp(x, y, is_direction=MASK, log_output=True, covariance="matern52", subsample=60)
+    assert len(calls) == 3  # outputs 0, 2 and 3; output 1 is output 0's twin
+    np.testing.assert_array_equal(m.length_scale[1], m.length_scale[0])
+    np.testing.assert_array_equal(m.chol[1], m.chol[0])
+    np.testing.assert_allclose(m.signal_var[1], m.signal_var[0], rtol=1e-12)
+    assert not np.array_equal(m.length_scale[3], m.length_scale[0])  # fitted on its own
+    xq = _states(200, 32)
+    p = gp.predict_gp(m, xq)
+    np.testing.assert_allclose(p[:, 1], 4.2 * p[:, 0], rtol=1e-10)
+    # the twin's hyperparameters are those of its own fit, to the optimiser's precision
+    alone = gp.fit_gp(x, y[:, 1], is_direction=MASK, log_output=True, covariance="matern52", subsample=60)
+    np.testing.assert_allclose(m.length_scale[1], alone.length_scale[0], rtol=1e-5)
+    np.testing.assert_allclose(p[:, 1], gp.predict_gp(alone, xq)[:, 0], rtol=1e-6)
+    # with the additive term: twins among the outputs with it, not across
+    calls.clear()
+    w = gp.fit_gp(
+        x,
+        y[:, :2],
+        is_direction=MASK,
+        log_output=True,
+        covariance="matern52",
+        subsample=60,
+        additive_columns=WIND_COLUMNS,
+        additive_outputs=[True, True],
+        gate_column=1,
+    )
+    assert len(calls) == 1
+    for f in ("length_scale", "wind_length_scale", "wind_gate"):
+        np.testing.assert_array_equal(getattr(w, f)[1], getattr(w, f)[0], err_msg=f)
+    calls.clear()
+    gp.fit_gp(
+        x,
+        y[:, :2],
+        is_direction=MASK,
+        log_output=True,
+        covariance="matern52",
+        subsample=60,
+        additive_columns=WIND_COLUMNS,
+        additive_outputs=[True, False],
+        gate_column=1,
+    )
+    assert len(calls) == 2

@@ -246,6 +246,11 @@ def fit_gp(
     gives the leave-one-out residuals in closed form (Rasmussen & Williams 2006, eq. 5.12):
     ``r_i = [B^-1 (y - mean)]_i / [B^-1]_ii`` with the noise in ``B``.
 
+    The hyperparameter fit sees the standardised values only, so an output whose standardised
+    fit data equal an earlier output's (to 1e-9: a constant factor apart, or after ``log10`` a
+    constant apart, as the S-N and T-N damage of a line with equal slopes) takes that fit's
+    hyperparameters instead of repeating it.
+
     Parameters
     ----------
     points : array_like, shape (m, d)
@@ -386,30 +391,41 @@ def fit_gp(
     wls = np.full((n_out, p), np.inf) if add_cols is not None else None
     wvar = np.zeros(n_out) if add_cols is not None else None
     wgate = np.full(n_out, np.inf) if add_cols is not None else None
+    fitted: list[tuple[bool, np.ndarray, object, float]] = []  # (with_add, standardised data, kernel, ratio)
     for cols in _output_groups(groups, n_out):
         with_add = bool(has_add[cols[0]])
         if has_add[cols].any() and not has_add[cols].all():
             raise ValueError(
                 f"GP outputs {cols.tolist()} share their hyperparameters but not all have the additive term"
             )
-        kern = k_add if with_add else k
-        gpr = GaussianProcessRegressor(
-            kern, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed
-        )
         rows = sub_add if with_add else sub
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always", ConvergenceWarning)
-            gpr.fit(z[rows], yh[rows, cols[0]] if cols.size == 1 else yh[np.ix_(rows, cols)])
-        for w in caught:
-            if issubclass(w.category, ConvergenceWarning):
-                log.info("GP outputs %s: %s", cols.tolist(), str(w.message).splitlines()[0])
-        kf = gpr.kernel_
-        scale2 = np.broadcast_to(np.asarray(gpr._y_train_std, dtype=float) ** 2, (cols.size,))
+        data = yh[rows, cols[0]] if cols.size == 1 else yh[np.ix_(rows, cols)]
+        std, unit = _standardised(data)
+        twin = _twin_of(fitted, with_add, unit)
+        if twin is None:
+            gpr = GaussianProcessRegressor(
+                k_add if with_add else k, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed
+            )
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always", ConvergenceWarning)
+                gpr.fit(z[rows], data)
+            for w in caught:
+                if issubclass(w.category, ConvergenceWarning):
+                    log.info("GP outputs %s: %s", cols.tolist(), str(w.message).splitlines()[0])
+            kf, std = gpr.kernel_, np.asarray(gpr._y_train_std, dtype=float)
+        else:  # the same standardised data as an earlier fit (a constant factor apart): its hyperparameters
+            kf = twin[2]
+            log.info(
+                "GP outputs %s: the hyperparameters of an earlier fit on the same standardised data", cols.tolist()
+            )
+        scale2 = np.broadcast_to(std**2, (cols.size,))
         full = kf.k1.k1 if with_add else kf.k1  # C * k(l)
         ls[cols] = np.broadcast_to(full.k2.length_scale, (p,))
         sig[cols] = full.k1.constant_value * scale2
         noi[cols] = kf.k2.noise_level * scale2
-        ratio[cols] = noi[cols[0]] / sig[cols[0]]  # one value per group, so its outputs share B
+        ratio[cols] = noi[cols[0]] / sig[cols[0]] if twin is None else twin[3]  # one per group: its outputs share B
+        if twin is None:
+            fitted.append((with_add, unit, kf, float(ratio[cols[0]])))
         if with_add:
             w = kf.k1.k2  # C_w * [SeaGate of] OnColumns(k_w(l_w))
             on = w.k2.base if gate_column is not None else w.k2
@@ -448,6 +464,25 @@ def _additive(
         raise ValueError(f"GP additive_columns {c.tolist()}: need distinct columns of the {p} embedded coordinates")
     has = np.broadcast_to(np.asarray(outputs, dtype=bool), (n_out,)).copy()
     return (c, has) if has.any() else (None, has)
+
+
+def _standardised(data: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The standard deviation (zero as one, as ``normalize_y``) and the standardised values of a fit's data."""
+    std = np.std(data, axis=0)
+    std = np.where(std < 10 * np.finfo(float).eps, 1.0, std)
+    return std, (data - data.mean(axis=0)) / std
+
+
+def _twin_of(fitted: list, with_add: bool, unit: np.ndarray, atol: float = 1e-9) -> tuple | None:
+    """An earlier fit of the same kernel on the same standardised data (to ``atol``), or None.
+
+    ``normalize_y`` makes the hyperparameter fit see only the standardised values, so outputs a
+    constant factor apart (after ``log10``, a constant apart) have the same optimum: the damage of
+    the S-N and T-N curves of a line where both slopes are equal, for example."""
+    for twin in fitted:
+        if twin[0] == with_add and twin[1].shape == unit.shape and np.max(np.abs(twin[1] - unit), initial=0.0) <= atol:
+            return twin
+    return None
 
 
 def _subsample(m: int, n: int, seed: int) -> np.ndarray:
