@@ -479,6 +479,25 @@ def test_wind_term_hyperparameters_on_their_own_subsample():
     )
 
 
+def test_wind_term_fit_started_from_the_plain_kernel():
+    """additive_start: warm and frozen first fit the plain kernel on subsample states, as a fit
+    without the term would; frozen keeps its length scales, warm starts from them. Both recover
+    the constructed sum."""
+    x = _states(120, 28)
+    y = _wind_plus_waves(x) + np.random.default_rng(29).normal(0, 0.02, 120)
+    kw = dict(is_direction=MASK, covariance="matern52", subsample=60)
+    term = dict(additive_columns=WIND_COLUMNS, gate_column=1, additive_subsample=0)
+    plain = gp.fit_gp(x, y, **kw)
+    fits = {start: gp.fit_gp(x, y, additive_start=start, **term, **kw) for start in gp.GP_ADDITIVE_STARTS}
+    np.testing.assert_array_equal(fits["frozen"].length_scale, plain.length_scale)
+    assert not np.array_equal(fits["warm"].length_scale, plain.length_scale)  # fitted from there
+    assert not np.array_equal(fits["warm"].length_scale, fits["joint"].length_scale)
+    xq = _states(400, 5)
+    for start, m in fits.items():
+        assert m.wind_var[0] > 0 and np.isfinite(m.wind_gate[0])
+        assert np.corrcoef(gp.predict_gp(m, xq)[:, 0], _wind_plus_waves(xq))[0, 1] > 0.99, start
+
+
 def test_wind_term_bad_settings_are_refused():
     x = _states(30, 26)
     y = np.column_stack([x[:, 2], x[:, 3]])
@@ -496,6 +515,8 @@ def test_wind_term_bad_settings_are_refused():
         )
     with pytest.raises(ValueError, match=r"outputs \[0, 1\] share their hyperparameters but not all have"):
         gp.fit_gp(x, y, is_direction=MASK, additive_columns=(0,), additive_outputs=[True, False], groups=[0, 0])
+    with pytest.raises(ValueError, match="unknown GP additive_start 'cold'"):
+        gp.fit_gp(x, y, is_direction=MASK, additive_columns=WIND_COLUMNS, additive_start="cold")
     with pytest.raises(ValueError, match="wind_term = 'damage' with share = 'all'"):
         lifecycle.RBFSettings.from_config({"method": "gp", "gp": {"wind_term": "damage", "share": "all"}})
     with pytest.raises(ValueError, match="wind_term"):

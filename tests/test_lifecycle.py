@@ -754,6 +754,7 @@ def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator,
         assert "gp_wind_sd" not in a and "gp_wind_term" not in a.attrs
     else:  # the damage has the wind term, seeing the wind speed and direction only; the rest has none
         assert a.attrs["gp_wind_term"] == wind and a.attrs["gp_wind_subsample"] == 0
+        assert a.attrs["gp_wind_start"] == "joint"
         is_dmg = np.char.startswith(a["output"].values.astype(str), "damage")
         sd, wls = a["gp_wind_sd"].values, a["gp_wind_length_scale"]
         assert (sd[is_dmg] > 0).all() and (sd[~is_dmg] == 0).all()

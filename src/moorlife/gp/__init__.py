@@ -48,12 +48,22 @@ models of some outputs) and
 from __future__ import annotations
 
 from moorlife.gp.covariance import GP_COVARIANCES, correlation
-from moorlife.gp.fit import GP_KERNELS, GP_RETRANSFORMS, GPModel, chord_embed, embedded_names, fit_gp, select_outputs
+from moorlife.gp.fit import (
+    GP_ADDITIVE_STARTS,
+    GP_KERNELS,
+    GP_RETRANSFORMS,
+    GPModel,
+    chord_embed,
+    embedded_names,
+    fit_gp,
+    select_outputs,
+)
 from moorlife.gp.predict import predict_gp, predict_latent
 
 __all__ = [
     "GP_COVARIANCES",
     "GP_KERNELS",
+    "GP_ADDITIVE_STARTS",
     "GP_RETRANSFORMS",
     "GPModel",
     "chord_embed",

@@ -35,6 +35,9 @@ GP_KERNELS: tuple[str, ...] = ("ard", "isotropic")
 GP_MEANS: tuple[str, ...] = ("constant", "linear")
 #: Back-transforms of a ``log10`` output (module :mod:`moorlife.gp`).
 GP_RETRANSFORMS: tuple[str, ...] = ("none", "noise", "predictive")
+#: How the outputs with the additive term start their hyperparameter fit (``fit_gp``'s
+#: ``additive_start``).
+GP_ADDITIVE_STARTS: tuple[str, ...] = ("joint", "warm", "frozen")
 
 _LN10_SQ = float(np.log(10.0) ** 2)
 
@@ -234,6 +237,7 @@ def fit_gp(
     gate_column: int | None = None,
     gate_scale: tuple[float, float, float] = (0.2, 0.02, 2.0),
     additive_subsample: int | None = None,
+    additive_start: str = "joint",
 ) -> GPModel:
     """Fit one Gaussian process with a noise term per output column.
 
@@ -315,6 +319,12 @@ def fit_gp(
         Training states of the hyperparameter fit of the outputs with the additive term (0: all;
         default ``subsample``), drawn as ``subsample``'s: its five more hyperparameters want
         more states than the plain kernel's, and the other outputs need not pay for them.
+    additive_start : {"joint", "warm", "frozen"}
+        How the outputs with the additive term find their hyperparameters. ``joint``: all of
+        them together from their initial values. ``warm``: the plain kernel is fitted first on
+        ``subsample`` states, and the joint fit starts from its amplitude, length scales and
+        noise. ``frozen``: as ``warm``, with the full kernel's length scales kept at that fit's
+        (the amplitudes, the term's length scales, the gate and the noise are fitted).
 
     Returns
     -------
@@ -324,8 +334,8 @@ def fit_gp(
     ------
     ValueError
         On non-finite values, a non-positive value of a ``log10`` output, an unknown kernel,
-        covariance or back-transform, inconsistent bounds, additive columns out of range or
-        repeated, or a group mixing outputs with and without the additive term.
+        covariance, back-transform or ``additive_start``, inconsistent bounds, additive columns
+        out of range or repeated, or a group mixing outputs with and without the additive term.
     """
     from sklearn.exceptions import ConvergenceWarning
     from sklearn.gaussian_process import GaussianProcessRegressor
@@ -339,6 +349,8 @@ def fit_gp(
     if prior_mean == "linear" and retransform == "predictive":
         raise ValueError("GP prior mean 'linear' has no latent variance: retransform 'predictive' is not available")
     covariance_code(covariance)  # refuses an unknown family
+    if additive_start not in GP_ADDITIVE_STARTS:
+        raise ValueError(f"unknown GP additive_start {additive_start!r}; expected one of {list(GP_ADDITIVE_STARTS)}")
     if retransform not in GP_RETRANSFORMS:
         raise ValueError(f"unknown GP back-transform {retransform!r}; expected one of {list(GP_RETRANSFORMS)}")
     bounded = (("length_scale", length_scale), ("signal", signal), ("noise", noise), ("gate_scale", gate_scale))
@@ -403,8 +415,13 @@ def fit_gp(
         std, unit = _standardised(data)
         twin = _twin_of(fitted, with_add, unit)
         if twin is None:
+            kern = k_add if with_add else k
+            if with_add and additive_start != "joint":  # start from the plain kernel's fit on the subsample
+                first = yh[sub, cols[0]] if cols.size == 1 else yh[np.ix_(sub, cols)]
+                ratio0 = np.std(yh[sub, cols[0]]) / std.flat[0]  # sd of the plain fit's data over this fit's
+                kern = _started(kern, _fit(k, z[sub], first), ratio0, frozen=additive_start == "frozen")
             gpr = GaussianProcessRegressor(
-                k_add if with_add else k, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed
+                kern, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed
             )
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always", ConvergenceWarning)
@@ -464,6 +481,36 @@ def _additive(
         raise ValueError(f"GP additive_columns {c.tolist()}: need distinct columns of the {p} embedded coordinates")
     has = np.broadcast_to(np.asarray(outputs, dtype=bool), (n_out,)).copy()
     return (c, has) if has.any() else (None, has)
+
+
+def _fit(kernel, z: np.ndarray, y: np.ndarray):
+    """scikit-learn's fitted kernel of ``y`` (``normalize_y``, no restarts), convergence warnings silenced."""
+    from sklearn.exceptions import ConvergenceWarning
+    from sklearn.gaussian_process import GaussianProcessRegressor
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        return GaussianProcessRegressor(kernel, alpha=0.0, normalize_y=True).fit(z, y).kernel_
+
+
+def _started(k_add, plain, std_ratio: float, *, frozen: bool):
+    """The additive kernel ``C * k(l) + C_w * term + White`` started at a plain fit ``C * k(l) + White``.
+
+    ``std_ratio`` is the plain fit's data sd over the additive fit's: the amplitude and the noise
+    are fractions of the data variance. Initial values are clipped to the bounds; ``frozen`` fixes
+    the length scales ``l``."""
+    from sklearn.base import clone
+
+    out = clone(k_add)
+    full, white = out.k1.k1, out.k2
+    amp = plain.k1.k1.constant_value * std_ratio**2
+    noise = plain.k2.noise_level * std_ratio**2
+    full.k1.constant_value = float(np.clip(amp, *np.ravel(full.k1.constant_value_bounds)))
+    white.noise_level = float(np.clip(noise, *np.ravel(white.noise_level_bounds)))
+    full.k2.length_scale = plain.k1.k2.length_scale
+    if frozen:
+        full.k2.length_scale_bounds = "fixed"
+    return out
 
 
 def _standardised(data: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

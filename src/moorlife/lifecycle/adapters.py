@@ -397,6 +397,7 @@ def reconstruct_lifecycle(
         if g.wind_term != "none":  # the GP stores without the term stay as they were
             out.attrs["gp_wind_term"] = g.wind_term
             out.attrs["gp_wind_subsample"] = g.wind_subsample
+            out.attrs["gp_wind_start"] = g.wind_start
     if thrust is not None and settings.thrust_statistic != "steady":  # the steady curve's stores as they were
         out.attrs.update(
             {

@@ -600,6 +600,7 @@ def _gp_in(
         gate_column=wave_height_column(mask),
         gate_scale=g.wind_gate.astuple(),
         additive_subsample=g.wind_subsample,
+        additive_start=g.wind_start,
     )
     e = model.loo_error.copy()
     if logs.any():

@@ -54,6 +54,8 @@ class GPSettings:
         Start and bounds of the term's sea-gate scale (:func:`moorlife.gp.fit_gp`'s ``gate_scale``).
     wind_subsample : int
         Training states of the hyperparameter fit of the outputs with the term (0: all).
+    wind_start : {"joint", "warm", "frozen"}
+        How they start that fit (:func:`moorlife.gp.fit_gp`'s ``additive_start``).
     """
 
     kernel: str
@@ -72,6 +74,7 @@ class GPSettings:
     wind_term: str
     wind_gate: GPBounds
     wind_subsample: int
+    wind_start: str
 
     @classmethod
     def from_section(cls, g: Mapping[str, Any], source: str = "config.yaml") -> GPSettings:
@@ -106,6 +109,7 @@ class GPSettings:
             wind_term=_wind_term(g, source),
             wind_gate=triples["wind_gate"],
             wind_subsample=int(g["wind_subsample"]),
+            wind_start=str(g["wind_start"]),
         )
 
 
