@@ -35,7 +35,8 @@ west-north-west seas), so that the timing and the transform comparison are meani
    the leave-one-out RMSE in the output's units and the validation r, RBF against GP.
    ``--noise`` multiplies every simulated value (training and validation) by seeded lognormal
    noise of mean 1, CV 25 % on the damage and 3 % on the other outputs (the seed noise of a
-   one-hour record); the true sums stay those of the noise-free surfaces.
+   one-hour record; a line's two damage curves share a draw, as they share the record); the true
+   sums stay those of the noise-free surfaces.
 """
 
 from __future__ import annotations
@@ -96,10 +97,16 @@ NOISE_CV = (0.25, 0.03)
 
 
 def add_noise(y: np.ndarray, labels: list[str], seed: int) -> np.ndarray:
-    """``y`` times lognormal noise of mean 1 (CV ``NOISE_CV``), seeded."""
+    """``y`` times lognormal noise of mean 1 (CV ``NOISE_CV``), seeded.
+
+    A line's S-N and T-N damage come from one tension record, so they share its draw (as in the
+    simulations, where they are a constant factor apart when both slopes are equal)."""
     cv = np.array([NOISE_CV[0] if lab.startswith("damage") else NOISE_CV[1] for lab in labels])
     s2 = np.log1p(cv**2)
     e = np.random.default_rng(seed).standard_normal(y.shape)
+    for k, lab in enumerate(labels):
+        if lab.startswith("damage_tn_"):
+            e[:, k] = e[:, labels.index("damage_sn_" + lab.removeprefix("damage_tn_"))]
     return y * np.exp(np.sqrt(s2) * e - s2 / 2)
 
 
