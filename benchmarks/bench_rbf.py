@@ -306,6 +306,14 @@ def choice_section(pts, train, valid, y, y_val, labels, lo, span, gp_variants=Fa
                 "gp, matern52": {"method": "gp", "gp": {"covariance": "matern52"}},
                 "gp, matern52, share var.": {"method": "gp", "gp": {"covariance": "matern52", "share": "variable"}},
                 "gp, matern52, wind term": {"method": "gp", "gp": {"covariance": "matern52", "wind_term": "damage"}},
+                "gp, matern52, wind, warm": {
+                    "method": "gp",
+                    "gp": {"covariance": "matern52", "wind_term": "damage", "wind_start": "warm"},
+                },
+                "gp, matern52, wind, frozen": {
+                    "method": "gp",
+                    "gp": {"covariance": "matern52", "wind_term": "damage", "wind_start": "frozen"},
+                },
             }
         )
     table = {}
