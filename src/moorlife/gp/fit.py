@@ -419,7 +419,8 @@ def fit_gp(
             if with_add and additive_start != "joint":  # start from the plain kernel's fit on the subsample
                 first = yh[sub, cols[0]] if cols.size == 1 else yh[np.ix_(sub, cols)]
                 ratio0 = np.std(yh[sub, cols[0]]) / std.flat[0]  # sd of the plain fit's data over this fit's
-                kern = _started(kern, _fit(k, z[sub], first), ratio0, frozen=additive_start == "frozen")
+                plain = _fit(k, z[sub], first, restarts, seed)
+                kern = _started(kern, plain, ratio0, frozen=additive_start == "frozen")
             gpr = GaussianProcessRegressor(
                 kern, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed
             )
@@ -483,14 +484,17 @@ def _additive(
     return (c, has) if has.any() else (None, has)
 
 
-def _fit(kernel, z: np.ndarray, y: np.ndarray):
-    """scikit-learn's fitted kernel of ``y`` (``normalize_y``, no restarts), convergence warnings silenced."""
+def _fit(kernel, z: np.ndarray, y: np.ndarray, restarts: int, seed: int):
+    """scikit-learn's fitted kernel of ``y`` (``normalize_y``, as ``fit_gp``'s), convergence warnings silenced."""
     from sklearn.exceptions import ConvergenceWarning
     from sklearn.gaussian_process import GaussianProcessRegressor
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ConvergenceWarning)
-        return GaussianProcessRegressor(kernel, alpha=0.0, normalize_y=True).fit(z, y).kernel_
+        gpr = GaussianProcessRegressor(
+            kernel, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed
+        )
+        return gpr.fit(z, y).kernel_
 
 
 def _started(k_add, plain, std_ratio: float, *, frozen: bool):
