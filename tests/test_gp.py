@@ -553,31 +553,12 @@ def test_outputs_a_constant_factor_apart_share_one_hyperparameter_fit(monkeypatc
     np.testing.assert_allclose(m.length_scale[1], alone.length_scale[0], rtol=1e-5)
     np.testing.assert_allclose(p[:, 1], gp.predict_gp(alone, xq)[:, 0], rtol=1e-6)
     # with the additive term: twins among the outputs with it, not across
+    kw = dict(is_direction=MASK, log_output=True, covariance="matern52", subsample=60, gate_column=1)
     calls.clear()
-    w = gp.fit_gp(
-        x,
-        y[:, :2],
-        is_direction=MASK,
-        log_output=True,
-        covariance="matern52",
-        subsample=60,
-        additive_columns=WIND_COLUMNS,
-        additive_outputs=[True, True],
-        gate_column=1,
-    )
+    w = gp.fit_gp(x, y[:, :2], additive_columns=WIND_COLUMNS, additive_outputs=[True, True], **kw)
     assert len(calls) == 1
     for f in ("length_scale", "wind_length_scale", "wind_gate"):
         np.testing.assert_array_equal(getattr(w, f)[1], getattr(w, f)[0], err_msg=f)
     calls.clear()
-    gp.fit_gp(
-        x,
-        y[:, :2],
-        is_direction=MASK,
-        log_output=True,
-        covariance="matern52",
-        subsample=60,
-        additive_columns=WIND_COLUMNS,
-        additive_outputs=[True, False],
-        gate_column=1,
-    )
+    gp.fit_gp(x, y[:, :2], additive_columns=WIND_COLUMNS, additive_outputs=[True, False], **kw)
     assert len(calls) == 2
