@@ -6,6 +6,7 @@ import logging
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -337,8 +338,6 @@ def fit_gp(
         covariance, back-transform or ``additive_start``, inconsistent bounds, additive columns
         out of range or repeated, or a group mixing outputs with and without the additive term.
     """
-    from sklearn.exceptions import ConvergenceWarning
-    from sklearn.gaussian_process import GaussianProcessRegressor
     from sklearn.gaussian_process.kernels import RBF, Matern, WhiteKernel
     from sklearn.gaussian_process.kernels import ConstantKernel as C
 
@@ -403,7 +402,7 @@ def fit_gp(
     wls = np.full((n_out, p), np.inf) if add_cols is not None else None
     wvar = np.zeros(n_out) if add_cols is not None else None
     wgate = np.full(n_out, np.inf) if add_cols is not None else None
-    fitted: list[tuple[bool, np.ndarray, object, float]] = []  # (with_add, standardised data, kernel, ratio)
+    fitted: list[_Fitted] = []
     for cols in _output_groups(groups, n_out):
         with_add = bool(has_add[cols[0]])
         if has_add[cols].any() and not has_add[cols].all():
@@ -411,28 +410,18 @@ def fit_gp(
                 f"GP outputs {cols.tolist()} share their hyperparameters but not all have the additive term"
             )
         rows = sub_add if with_add else sub
-        data = yh[rows, cols[0]] if cols.size == 1 else yh[np.ix_(rows, cols)]
+        data = _group_data(yh, rows, cols)
         std, unit = _standardised(data)
         twin = _twin_of(fitted, with_add, unit)
         if twin is None:
             kern = k_add if with_add else k
             if with_add and additive_start != "joint":  # start from the plain kernel's fit on the subsample
-                first = yh[sub, cols[0]] if cols.size == 1 else yh[np.ix_(sub, cols)]
-                ratio0 = np.std(yh[sub, cols[0]]) / std.flat[0]  # sd of the plain fit's data over this fit's
-                plain = _fit(k, z[sub], first, restarts, seed)
+                plain, plain_std = _fit(k, z[sub], _group_data(yh, sub, cols), restarts, seed, cols)
+                ratio0 = plain_std.flat[0] / std.flat[0]  # sd of the plain fit's data over this fit's
                 kern = _started(kern, plain, ratio0, frozen=additive_start == "frozen")
-            gpr = GaussianProcessRegressor(
-                kern, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed
-            )
-            with warnings.catch_warnings(record=True) as caught:
-                warnings.simplefilter("always", ConvergenceWarning)
-                gpr.fit(z[rows], data)
-            for w in caught:
-                if issubclass(w.category, ConvergenceWarning):
-                    log.info("GP outputs %s: %s", cols.tolist(), str(w.message).splitlines()[0])
-            kf, std = gpr.kernel_, np.asarray(gpr._y_train_std, dtype=float)
+            kf, std = _fit(kern, z[rows], data, restarts, seed, cols)
         else:  # the same standardised data as an earlier fit (a constant factor apart): its hyperparameters
-            kf = twin[2]
+            kf = twin.kernel
             log.info(
                 "GP outputs %s: the hyperparameters of an earlier fit on the same standardised data", cols.tolist()
             )
@@ -441,9 +430,9 @@ def fit_gp(
         ls[cols] = np.broadcast_to(full.k2.length_scale, (p,))
         sig[cols] = full.k1.constant_value * scale2
         noi[cols] = kf.k2.noise_level * scale2
-        ratio[cols] = noi[cols[0]] / sig[cols[0]] if twin is None else twin[3]  # one per group: its outputs share B
+        ratio[cols] = noi[cols[0]] / sig[cols[0]] if twin is None else twin.ratio  # one per group: its outputs share B
         if twin is None:
-            fitted.append((with_add, unit, kf, float(ratio[cols[0]])))
+            fitted.append(_Fitted(with_add, unit, kf, float(ratio[cols[0]])))
         if with_add:
             w = kf.k1.k2  # C_w * [SeaGate of] OnColumns(k_w(l_w))
             on = w.k2.base if gate_column is not None else w.k2
@@ -484,17 +473,37 @@ def _additive(
     return (c, has) if has.any() else (None, has)
 
 
-def _fit(kernel, z: np.ndarray, y: np.ndarray, restarts: int, seed: int):
-    """scikit-learn's fitted kernel of ``y`` (``normalize_y``, as ``fit_gp``'s), convergence warnings silenced."""
+def _group_data(yh: np.ndarray, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+    """A hyperparameter group's fit data on some rows: a vector for one output, else a matrix."""
+    return yh[rows, cols[0]] if cols.size == 1 else yh[np.ix_(rows, cols)]
+
+
+def _fit(kernel, z: np.ndarray, y: np.ndarray, restarts: int, seed: int, cols: np.ndarray):
+    """scikit-learn's fit of ``y`` (``normalize_y``, ``restarts`` seeded restarts): the fitted kernel
+    and the data's sd; convergence warnings logged against the output columns ``cols``."""
     from sklearn.exceptions import ConvergenceWarning
     from sklearn.gaussian_process import GaussianProcessRegressor
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ConvergenceWarning)
-        gpr = GaussianProcessRegressor(
-            kernel, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed
-        )
-        return gpr.fit(z, y).kernel_
+    gpr = GaussianProcessRegressor(
+        kernel, alpha=0.0, normalize_y=True, n_restarts_optimizer=restarts, random_state=seed
+    )
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ConvergenceWarning)
+        gpr.fit(z, y)
+    for w in caught:
+        if issubclass(w.category, ConvergenceWarning):
+            log.info("GP outputs %s: %s", cols.tolist(), str(w.message).splitlines()[0])
+    return gpr.kernel_, np.asarray(gpr._y_train_std, dtype=float)
+
+
+class _Fitted(NamedTuple):
+    """An earlier hyperparameter fit of ``fit_gp``: its kernel kind, standardised data, fitted
+    kernel and noise over signal ratio."""
+
+    with_add: bool
+    unit: np.ndarray
+    kernel: object
+    ratio: float
 
 
 def _started(k_add, plain, std_ratio: float, *, frozen: bool):
@@ -524,14 +533,15 @@ def _standardised(data: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return std, (data - data.mean(axis=0)) / std
 
 
-def _twin_of(fitted: list, with_add: bool, unit: np.ndarray, atol: float = 1e-9) -> tuple | None:
+def _twin_of(fitted: list[_Fitted], with_add: bool, unit: np.ndarray, atol: float = 1e-9) -> _Fitted | None:
     """An earlier fit of the same kernel on the same standardised data (to ``atol``), or None.
 
     ``normalize_y`` makes the hyperparameter fit see only the standardised values, so outputs a
     constant factor apart (after ``log10``, a constant apart) have the same optimum: the damage of
     the S-N and T-N curves of a line where both slopes are equal, for example."""
     for twin in fitted:
-        if twin[0] == with_add and twin[1].shape == unit.shape and np.max(np.abs(twin[1] - unit), initial=0.0) <= atol:
+        same_shape = twin.with_add == with_add and twin.unit.shape == unit.shape
+        if same_shape and np.max(np.abs(twin.unit - unit), initial=0.0) <= atol:
             return twin
     return None
 

@@ -185,7 +185,7 @@ def predict_latent(
             raise ValueError("the latent variance of a GP with a linear prior mean is not available")
         rows = max(1, min(int(chunk_rows), _CACHE_ROWS))
         for j in np.flatnonzero(want):
-            gc = model.gates(model.centres, [j])[:, 0]  # the sea gate at the centres, once per output
+            gc = model.gates(model.centres, [j])[:, 0] if wr[j] > 0 else None  # the sea gate at the centres, once
             for s in range(0, n, rows):
                 e = min(n, s + rows)
                 k = correlation(z[s:e], model.centres, model.length_scale[j], model.covariance)
