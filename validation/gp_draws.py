@@ -16,6 +16,14 @@ validation r on the 225 validation states against their one record (linear units
   linear scale with the sea-gated wind term (``gp.wind_term``), its hyperparameters on all states
   (``joint``) and with the plain kernel's 200-state length scales (``frozen``); back-transformed
   by ``max(., 0)^(m/2)``, the count of negative predictions and the fitted sea gate printed;
+- ``--lambdas L [L ...]``: the transform by likelihood. For each Box-Cox power ``L`` (0:
+  ``log10``; otherwise ``D^L``, back-transformed by ``max(., 0)^(1/L)``), the gated wind term
+  with the ``frozen`` start fitted to the transformed damage, and printed: the log marginal
+  likelihood of the 1,000 training values in damage units (the GP's, at its fitted
+  hyperparameters, plus the Jacobian ``sum log |dg/dD|``), the leave-one-out log predictive
+  density in damage units (the closed-form leave-one-out mean and variance, plus the same
+  Jacobian), the validation r, and on the store's truth window (``truth.zarr``) the per-hour r
+  and the window sum's error. The two likelihoods see the training states alone;
 - ``--worst N``: the N validation states with the largest errors of the last fit of each output.
 
 Section 22 of ``validation/reconstruction.md`` has the figures.
@@ -47,6 +55,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--draws", type=int, nargs="*", default=[])
     p.add_argument("--all-states", action="store_true")
     p.add_argument("--power", action="store_true")
+    p.add_argument("--lambdas", type=float, nargs="*", default=[])
     p.add_argument("--worst", type=int, default=0)
     a = p.parse_args(argv)
     mask = direction_mask()
@@ -87,6 +96,8 @@ def main(argv: list[str] | None = None) -> int:
                 f"{time.process_time() - t:.0f} CPU-s",
                 flush=True,
             )
+        if a.lambdas:
+            _by_likelihood(st, x, y, tr, va, a.lambdas, ms, line, {**base, **term})
         if a.worst:
             e = pred - y[va]
             order = np.argsort(-np.abs(e))
@@ -97,6 +108,50 @@ def main(argv: list[str] | None = None) -> int:
                     f"  W {w:.1f} m/s from {wd:.0f}, Hs {hs:.2f} m, Tp {tp:.1f} s from {ad:.0f}: {y[va][i]:.3e}, predicted {pred[i]:.3e}"
                 )
     return 0
+
+
+def _box_cox(lam: float, d: np.ndarray):
+    """The values fitted, the back-transform of the prediction and ``log |dg/dD|`` at ``d``.
+
+    ``lam`` 0: the package's ``log10`` output (``log_output``, its noise back-transform included);
+    otherwise ``D^lam`` on a linear scale, back-transformed by ``max(., 0)^(1/lam)``.
+    """
+    if lam == 0:
+        return d, (lambda z: z), -np.log(d) - np.log(np.log(10.0))
+    return d**lam, (lambda z: np.clip(z, 0.0, None) ** (1.0 / lam)), np.log(lam) + (lam - 1.0) * np.log(d)
+
+
+def _by_likelihood(st, x, y, tr, va, lambdas, ms, line, kw) -> None:
+    """``--lambdas``: the likelihoods in damage units, the validation r and the truth window per power."""
+    truth = st["truth"]
+    rows = []
+    for lam in lambdas:
+        t = time.process_time()
+        fitted, back, jac = _box_cox(lam, y[tr])
+        m = gp.fit_gp(x[tr], fitted, subsample=200, additive_start="frozen", log_output=lam == 0, **kw)
+        yt = np.log10(fitted) if lam == 0 else fitted  # the values the GP sees
+        sig = m.signal_var[0]
+        lml = -0.5 * (yt - m.mean[0]) @ m.weights[:, 0] / sig - np.log(np.diag(m.chol[0])).sum()
+        lml += -0.5 * yt.size * np.log(2 * np.pi * sig) + jac.sum()
+        lv = m.loo_var[:, 0]
+        lpd = np.sum(-0.5 * m.loo_error[:, 0] ** 2 / lv - 0.5 * np.log(2 * np.pi * lv) + jac)
+        r = np.corrcoef(back(gp.predict_gp(m, x[va])[:, 0]), y[va])[0, 1]
+        window = ""
+        if truth is not None:
+            hours = lifecycle._points(st["hindcast"].isel(time=truth["hindcast_index"].values), "time")
+            ph = back(gp.predict_gp(m, hours)[:, 0])
+            tt = truth["damage_sn"].sel(line=line).values
+            window = f", truth window per-hour r {np.corrcoef(ph, tt)[0, 1]:.4f}, sum {100 * (ph.sum() / tt.sum() - 1):+.1f} %"
+        rows.append((lam, lml, lpd))
+        print(
+            f"{ms} {line} Box-Cox {lam:.3f}: log likelihood in damage units {lml:.1f}, leave-one-out "
+            f"log density {lpd:.1f}, validation r {r:.4f}{window}, {time.process_time() - t:.0f} CPU-s",
+            flush=True,
+        )
+    best = max(rows, key=lambda q: q[2])[0]
+    print(
+        f"{ms} {line}: the leave-one-out density picks {best:.3f}, the likelihood {max(rows, key=lambda q: q[1])[0]:.3f}"
+    )
 
 
 if __name__ == "__main__":
