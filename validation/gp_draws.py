@@ -24,7 +24,8 @@ validation r on the 225 validation states against their one record (linear units
   density in damage units (the closed-form leave-one-out mean and variance, plus the same
   Jacobian), the validation r, and on the store's truth window (``truth.zarr``) the per-hour r
   and the window sum's error. The two likelihoods see the training states alone;
-- ``--worst N``: the N validation states with the largest errors of the last fit of each output.
+- ``--worst N``: the N validation states with the largest errors of the last fit of each output
+  (of ``--draws``, ``--all-states`` or ``--power``).
 
 Section 22 of ``validation/reconstruction.md`` has the figures.
 """
@@ -98,7 +99,7 @@ def main(argv: list[str] | None = None) -> int:
             )
         if a.lambdas:
             _by_likelihood(st, x, y, tr, va, a.lambdas, ms, line, {**base, **term})
-        if a.worst:
+        if a.worst and fits:
             e = pred - y[va]
             order = np.argsort(-np.abs(e))
             print(f"  squared error of the {a.worst} worst: {np.sum(e[order[: a.worst]] ** 2) / np.sum(e**2):.2f}")
