@@ -125,6 +125,9 @@ def _box_cox(lam: float, d: np.ndarray):
 def _by_likelihood(st, x, y, tr, va, lambdas, ms, line, kw) -> None:
     """``--lambdas``: the likelihoods in damage units, the validation r and the truth window per power."""
     truth = st["truth"]
+    if truth is not None:  # the window's hours and their simulated damage, once for every power
+        hours = lifecycle._points(st["hindcast"].isel(time=truth["hindcast_index"].values), "time")
+        tt = truth["damage_sn"].sel(line=line).values
     rows = []
     for lam in lambdas:
         t = time.process_time()
@@ -139,9 +142,7 @@ def _by_likelihood(st, x, y, tr, va, lambdas, ms, line, kw) -> None:
         r = np.corrcoef(back(gp.predict_gp(m, x[va])[:, 0]), y[va])[0, 1]
         window = ""
         if truth is not None:
-            hours = lifecycle._points(st["hindcast"].isel(time=truth["hindcast_index"].values), "time")
             ph = back(gp.predict_gp(m, hours)[:, 0])
-            tt = truth["damage_sn"].sel(line=line).values
             window = f", truth window per-hour r {np.corrcoef(ph, tt)[0, 1]:.4f}, sum {100 * (ph.sum() / tt.sum() - 1):+.1f} %"
         rows.append((lam, lml, lpd))
         print(
