@@ -1,0 +1,242 @@
+"""The training records' seed noise in a reconstructed damage sum, and the bias test with it (issue 22).
+
+    OMP_NUM_THREADS=1 python validation/record_noise.py --results results --systems MS4 MS6 --life \\
+        --variant paper= --variant frozen=validation/overlays/gp_matern52_wind_frozen.yaml > noise.md
+
+A reconstruction is trained on one record (one seed) per training state, and is linear in those
+records: the RBF's and the GP's ``log10`` prediction at an hour ``h`` is ``f_h = sum_i A_hi y_i``
+(the GP about its constant mean), with ``y_i`` the ``log10`` damage of training state ``i``. A
+relative seed error ``e_i`` of record ``i`` moves ``y_i`` by ``e_i / ln 10`` and the window's sum
+``S = sum_h D_h`` by ``sum_i G_i e_i``, with ``G = A^T D`` (``D_h`` the reconstructed hourly damage):
+``G_i`` is the part of the sum that record ``i`` carries. With each record's seed error of relative
+sd ``c`` (the truth's own model, ``var(x) = c^2 x^2``, ``c`` measured on the window's second-seed
+hours as :func:`moorlife.truth.noise_floor` measures it), the reconstructed sum has a seed scatter
+of relative sd ``c |G| / S``, beside the truth sum's ``c |x| / sum x``. The truth's hours are
+independent; the reconstruction's are not: every storm hour near one training state carries that
+one record's error.
+
+Printed per system, variant and line (S-N damage; T-N is the same up to a constant):
+
+- the window sum's error against the truth, %;
+- ``sd truth``: the truth sum's seed scatter (the harness's ``seed_sum_std_pct``);
+- ``sd records``: the reconstructed sum's, ``100 c |G| / S``;
+- ``z`` against the truth's scatter alone (the harness's bias test) and against both,
+  ``error / hypot(sd truth, sd records)``: the bias test of two noisy sums;
+- the coverage factor the life band needs to hold the truth (``|error| / sd``): with the band's
+  sd on the window today, ``hypot(sd truth, validation term)`` (the largest ``|validation sum
+  error|`` over the curve's lines, :func:`moorlife.lifecycle.validation_sum_term`), and with the
+  records' term added in quadrature;
+- the training states carrying the most of the sum, ``G_i / S``, with their case ids;
+- with ``--life``, the same records' term for the sum over every hindcast hour (the life cycle),
+  with the window's ``c``, beside the term of independent hours that the life band's seed part
+  takes today (:func:`moorlife.lifecycle.sum_seed_cv`).
+
+The linear map is checked against the package's own prediction on the first hours (printed as
+``check``, the largest difference in ``log10``). The RBF's shape and the GP's hyperparameters
+are held at their fitted values: the map is the one of the fitted model. Models in the paper's
+space only (``lifecycle.rbf.space: paper``, the GP's ``gp.thrust: false``).
+
+Section 25 of ``validation/reconstruction.md`` has the figures.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+import numpy as np
+import scipy.linalg as sla
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import reconstruction as rec  # noqa: E402  (the harness's config and store loaders)
+
+LINE_OUTPUT = "damage_sn"
+
+
+def gp_adjoint(model, hours: np.ndarray, weights: np.ndarray, j: int) -> np.ndarray:
+    """``G = A^T weights`` of GP output ``j`` (``A`` the map from the training values to the
+    posterior mean at ``hours``): ``(R + lambda I)^-1 K_*^T weights``, in correlation units."""
+    from moorlife.gp.covariance import correlation
+    from moorlife.gp.fit import chord_embed
+
+    z = chord_embed(hours, model.space)
+    acc = np.zeros(model.centres.shape[0])
+    wr = model.wind_ratio[j]
+    gc = model.gates(model.centres, [j])[:, 0] if wr > 0 else None
+    for s in range(0, z.shape[0], 2048):
+        e = min(z.shape[0], s + 2048)
+        k = correlation(z[s:e], model.centres, model.length_scale[j], model.covariance)
+        if wr > 0:
+            gi = model.gates(z[s:e], [j])[:, 0]
+            k += (
+                wr * np.outer(gi, gc) * correlation(z[s:e], model.centres, model.wind_length_scale[j], model.covariance)
+            )
+        acc += k.T @ weights[s:e]
+    return sla.cho_solve((model.chol[j], True), acc)
+
+
+def rbf_adjoint(model, train: np.ndarray, hours: np.ndarray, weights: np.ndarray, j: int) -> np.ndarray:
+    """``G = A^T weights`` of RBF output ``j``: the first ``m`` entries of
+    ``M^-1 [K_*^T weights; P_*^T weights]``, ``M`` the augmented matrix of its shape and ridge."""
+    from moorlife.rbf.fit import model_basis
+    from moorlife.rbf.kernels import gaussian
+    from moorlife.rbf.system import augmented_matrix
+    from moorlife.space import embed, squared_distances
+
+    isdir = model.space.is_direction
+    zc, q, m = model.centres, float(model.shape[j]), model.centres.shape[0]
+    mat = augmented_matrix(
+        squared_distances(zc, zc, isdir), model_basis(train, zc, isdir, model.trend), q, float(model.smoothing[j])
+    )
+    rhs = np.zeros(mat.shape[0])
+    for s in range(0, hours.shape[0], 2048):
+        e = min(hours.shape[0], s + 2048)
+        zh = embed(hours[s:e], model.space)
+        rhs[:m] += gaussian(squared_distances(zh, zc, isdir), q).T @ weights[s:e]
+        rhs[m:] += model_basis(hours[s:e], zh, isdir, model.trend).T @ weights[s:e]
+    return np.linalg.solve(mat, rhs)[:m]
+
+
+def window_c(truth_ds, seed2, line: str, storm: int) -> float:
+    """The relative seed sd of one hour's damage on the window, as :func:`moorlife.truth.noise_floor`."""
+    from moorlife.truth import strata_weights
+
+    idx = truth_ds["hindcast_index"].values
+    pos = np.searchsorted(idx, seed2["hindcast_index"].values)
+    w = strata_weights(idx.size, pos, hs=truth_ds["hs"].values, storm=storm) if storm else np.ones(pos.size)
+    a = truth_ds[LINE_OUTPUT].sel(line=line).values[pos]
+    b = seed2[LINE_OUTPUT].sel(line=line).values
+    return float(np.sqrt(np.sum(w * (a - b) ** 2 / 2) / np.sum(w * ((a + b) / 2) ** 2)))
+
+
+def measure(cfg, st, life: bool = False) -> list[dict]:
+    """Every line of one system and variant: the sums, the two scatters and the carrying states."""
+    from moorlife import lifecycle
+    from moorlife.lifecycle.fit import _floored, fit_outputs, predict_outputs
+    from moorlife.lifecycle.spaces import space_points
+    from moorlife.stages import thrust_for
+
+    settings = lifecycle.rbf_settings(cfg["lifecycle"]["rbf"])
+    cases, sims, truth_ds, seed2 = st["cases"], st["sims"], st["truth"], st["seed2"]
+    role = cases["role"].values.astype(object).astype(str)
+    train = role == "train"
+    cols = lifecycle.output_columns(sims, "case", settings.outputs)
+    y = lifecycle.stack_outputs(sims, "case", cols)
+    x = lifecycle._points(cases, "case")
+    lo, span = lifecycle._selection_scaling(cases)
+    thrust = thrust_for(settings, rec.ROOT / cfg["platform"], cfg["simulation"]["wind"])
+    model = fit_outputs(x[train], y[train], cols, settings, lo=lo, span=span, thrust=thrust)
+    hours = lifecycle._points(st["hindcast"].isel(time=truth_ds["hindcast_index"].values), "time")
+    pred = predict_outputs(model, hours)
+    valid = role == "validate"
+    # the band's reconstruction term, as lifecycle.validation_sum_term: the largest |validation
+    # sum error| over the lines of the curve
+    pv = predict_outputs(model, x[valid])
+    dmg = [i for i, c in enumerate(cols) if c[0] == LINE_OUTPUT]
+    val = 100 * max(abs(pv[:, i].sum() / y[valid][:, i].sum() - 1) for i in dmg)
+    every = lifecycle._points(st["hindcast"], "time") if life else None
+    pred_all = predict_outputs(model, every) if life else None
+    rows = []
+    for line in truth_ds["line"].values.astype(object).astype(str):
+        col = cols.index((LINE_OUTPUT, line))
+        k = next(i for i, c in enumerate(model.columns) if col in c)
+        sub, space = model.models[k], model.spaces[k]
+        if space != "paper":
+            raise SystemExit(
+                f"{LINE_OUTPUT}/{line} is fitted in the {space!r} space; record_noise.py takes 'paper' only"
+            )
+        j = int(np.flatnonzero(model.columns[k] == col)[0])
+        xh, xt = space_points(space, hours, model.thrust), space_points(space, x[train], model.thrust)
+        p = pred[:, col]
+        yt = np.log10(_floored(y[train][:, col].copy(), cols[col]))
+        f3 = np.log10(p[:3] / sub.log_factor[j])
+        if model.method == "gp":
+            g = gp_adjoint(sub, xh, p, j)
+            rows3 = np.stack([gp_adjoint(sub, xh[h : h + 1], np.ones(1), j) for h in range(3)])
+            check = np.abs(sub.mean[j] + rows3 @ (yt - sub.mean[j]) - f3)
+        else:
+            g = rbf_adjoint(sub, xt, xh, p, j)
+            rows3 = np.stack([rbf_adjoint(sub, xt, xh[h : h + 1], np.ones(1), j) for h in range(3)])
+            check = np.abs(rows3 @ yt - f3)
+        truth_x = truth_ds[LINE_OUTPUT].sel(line=line).values
+        c = window_c(truth_ds, seed2, line, int(cfg["truth"]["second_seed_storm"]))
+        s, t = p.sum(), truth_x.sum()
+        err, sd_t, sd_r = 100 * (s / t - 1), 100 * c * np.linalg.norm(truth_x) / t, 100 * c * np.linalg.norm(g) / s
+        top = np.argsort(-np.abs(g))[:3]
+        ids = cases["case"].values[train]
+        row = dict(
+            line=line,
+            c=c,
+            err=err,
+            sd_t=sd_t,
+            sd_r=sd_r,
+            z=err / sd_t,
+            z2=err / np.hypot(sd_t, sd_r),
+            val=val,
+            k=abs(err) / np.hypot(sd_t, val),
+            k2=abs(err) / np.sqrt(sd_t**2 + sd_r**2 + val**2),
+            top=[(int(ids[i]), g[i] / s) for i in top],
+            check=float(check.max()),
+        )
+        if life:  # the whole hindcast's sum: its records' term with the window's c
+            pa = pred_all[:, col]
+            xa = space_points(space, every, model.thrust)
+            ga = gp_adjoint(sub, xa, pa, j) if model.method == "gp" else rbf_adjoint(sub, xt, xa, pa, j)
+            ta = np.argsort(-np.abs(ga))[:3]
+            row["life"] = (
+                100 * c * np.linalg.norm(ga) / pa.sum(),
+                [(int(ids[i]), ga[i] / pa.sum()) for i in ta],
+                100 * c * np.linalg.norm(pa) / pa.sum(),
+            )
+        rows.append(row)
+    return rows
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--results", type=Path, default=rec.ROOT / "results")
+    p.add_argument("--systems", nargs="+", default=["MS1", "MS2", "MS3", "MS4", "MS5", "MS6"])
+    p.add_argument("--variant", action="append", default=[], help="NAME=OVERLAY[,OVERLAY...] (empty: config.yaml)")
+    p.add_argument("--life", action="store_true", help="also the records' term of the whole hindcast's sum")
+    a = p.parse_args(argv)
+    variants = {}
+    for spec in a.variant or ["paper="]:
+        name, _, files = spec.partition("=")
+        variants[name] = rec.study([f for f in files.split(",") if f])
+    life: list[str] = []
+    print(
+        "| system | variant | line | c | error % | sd truth % | sd records % | z (truth) | z (both) | band k needed: today / with records | carried by (case: share) | check |"
+    )
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for ms in a.systems:
+        st = rec.load(a.results, ms)
+        if st is None or st["truth"] is None or st["seed2"] is None:
+            print(f"{ms}: no simulations, truth.zarr or truth_seed2.zarr under {a.results}, skipped", file=sys.stderr)
+            continue
+        for name, cfg in variants.items():
+            for r in measure(cfg, st, a.life):
+                carried = ", ".join(f"{i}: {sh:.2f}" for i, sh in r["top"])
+                print(
+                    f"| {ms} | {name} | {r['line']} | {r['c']:.3f} | {r['err']:+.1f} | {r['sd_t']:.2f} | {r['sd_r']:.2f} "
+                    f"| {r['z']:+.1f} | {r['z2']:+.1f} | {r['k']:.2f} / {r['k2']:.2f} | {carried} | {r['check']:.0e} |",
+                    flush=True,
+                )
+                if "life" in r:
+                    sd, top, hours_term = r["life"]
+                    life.append(
+                        f"| {ms} | {name} | {r['line']} | {sd:.2f} | {hours_term:.3f} | "
+                        + ", ".join(f"{i}: {sh:.3f}" for i, sh in top)
+                        + " |"
+                    )
+    if life:
+        print(
+            "\n| system | variant | line | life-cycle sum: sd records % | sd of independent hours % | carried by (case: share) |"
+        )
+        print("|---|---|---|---|---|---|")
+        print("\n".join(life))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
