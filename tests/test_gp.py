@@ -562,3 +562,34 @@ def test_outputs_a_constant_factor_apart_share_one_hyperparameter_fit(monkeypatc
     calls.clear()
     gp.fit_gp(x, y[:, :2], additive_columns=WIND_COLUMNS, additive_outputs=[True, False], **kw)
     assert len(calls) == 2
+
+
+@pytest.mark.parametrize("wind", [False, True])
+def test_training_weights_carry_a_weighted_sum_of_the_posterior_means(wind):
+    """sum_h w_h (mu(x_h) - m) = sum_i G_i (y_i - m), G = training_weights: the posterior mean is
+    linear in the training values (log10 for a log output), with or without the gated wind term."""
+    x = _states(120, 31)
+    y = np.column_stack([1e-6 * np.exp(_wind_plus_waves(x)), _smooth(x)])
+    y *= np.exp(np.random.default_rng(32).normal(0, 0.05, y.shape))
+    kw = dict(is_direction=MASK, covariance="matern52", log_output=[True, False])
+    if wind:
+        kw.update(additive_columns=WIND_COLUMNS, additive_outputs=[True, False], gate_column=1)
+    model = gp.fit_gp(x, y, **kw)
+    assert (model.wind_var is not None and model.wind_var[0] > 0) == wind
+    xq = _states(300, 33)
+    mu, _ = gp.predict_latent(model, xq)
+    yt = np.column_stack([np.log10(y[:, 0]), y[:, 1]])
+    w = np.random.default_rng(34).random((300, 2))
+    g = gp.training_weights(model, xq, w)
+    np.testing.assert_allclose(np.sum(g * (yt - model.mean), axis=0), np.sum(w * (mu - model.mean), axis=0), rtol=1e-9)
+    one = gp.training_weights(model, xq, w[:, 0], outputs=[0], chunk_rows=41)
+    np.testing.assert_allclose(one[:, 0], g[:, 0], rtol=0, atol=1e-9 * np.abs(g[:, 0]).max())
+    with pytest.raises(ValueError, match="weights have shape"):
+        gp.training_weights(model, xq, w[:, :1])
+
+
+def test_training_weights_refuse_a_linear_prior_mean():
+    x = _states(40, 35)
+    model = gp.fit_gp(x, _smooth(x), is_direction=MASK, prior_mean="linear")
+    with pytest.raises(ValueError, match="linear prior mean"):
+        gp.training_weights(model, x, np.ones(40))

@@ -364,3 +364,35 @@ def test_per_output_choice_picks_log_for_lognormal_and_linear_for_linear_outputs
     np.testing.assert_array_equal(lin.log_output, [False, False])
     with pytest.raises(ValueError, match="no transform candidate"):
         rbf.choose_per_output(geometry, y, shapes=grid, linear_candidate=[False, True])
+
+
+@pytest.mark.parametrize("trend", [False, True])
+def test_training_weights_carry_a_weighted_sum_of_the_interpolant(trend):
+    """sum_h w_h f(x_h) = sum_i G_i y_i, G = training_weights: the interpolant is linear in its
+    training values (log10 for a log output), per shape and ridge, with or without a trend."""
+    x = _sea_states(150, 3)
+    y = np.column_stack([1e-5 * (1.0 + x[:, 2] ** 2), np.sin(x[:, 2]) + 0.05 * x[:, 3], x[:, 3] ** 2])
+    kw = dict(is_direction=DIRS5, shape=[0.3, 0.3, 0.5], smoothing=[0.0, 1e-3, 0.0], log_output=[True, False, False])
+    if trend:
+        kw["trend"] = rbf.Trend(column=0, knots=(8.0, 12.0, 16.0), direction=1, harmonics=1)
+    model = rbf.fit_rbf(x, y, **kw)
+    assert (model.trend is not None) == trend
+    xq = _sea_states(400, 4)
+    w = np.random.default_rng(5).random((400, 3))
+    f = rbf.predict_rbf(model, xq)
+    f[:, 0] = np.log10(f[:, 0])  # the interpolated values
+    yt = np.column_stack([np.log10(y[:, 0]), y[:, 1:]])
+    g = rbf.training_weights(model, xq, w, train_points=x if trend else None)
+    np.testing.assert_allclose(np.sum(g * yt, axis=0), np.sum(w * f, axis=0), rtol=1e-9)
+    # one column of weights for every output; the chunking does not change the weights
+    tp = x if trend else None
+    g1 = rbf.training_weights(model, xq, w[:, 1], train_points=tp, chunk_rows=37)
+    np.testing.assert_allclose(g1, rbf.training_weights(model, xq, w[:, 1], train_points=tp), rtol=1e-10, atol=0)
+    np.testing.assert_allclose(np.sum(g1 * yt, axis=0), f.T @ w[:, 1], rtol=1e-9)
+    one = rbf.training_weights(model, xq, w[:, 2], outputs=[2], train_points=tp)
+    np.testing.assert_allclose(one[:, 0], g[:, 2], rtol=0, atol=1e-10 * np.abs(g[:, 2]).max())
+    if trend:
+        with pytest.raises(ValueError, match="train_points"):
+            rbf.training_weights(model, xq, w)
+    with pytest.raises(ValueError, match="weights have shape"):
+        rbf.training_weights(model, xq, w[:, :2], train_points=x)

@@ -8,7 +8,8 @@ records: the RBF's and the GP's ``log10`` prediction at an hour ``h`` is ``f_h =
 (the GP about its constant mean), with ``y_i`` the ``log10`` damage of training state ``i``. A
 relative seed error ``e_i`` of record ``i`` moves ``y_i`` by ``e_i / ln 10`` and the window's sum
 ``S = sum_h D_h`` by ``sum_i G_i e_i``, with ``G = A^T D`` (``D_h`` the reconstructed hourly damage):
-``G_i`` is the part of the sum that record ``i`` carries. With each record's seed error of relative
+``G_i`` is the part of the sum that record ``i`` carries (:func:`moorlife.rbf.training_weights`,
+:func:`moorlife.gp.training_weights`). With each record's seed error of relative
 sd ``c`` (the truth's own model, ``var(x) = c^2 x^2``, ``c`` measured on the window's second-seed
 hours as :func:`moorlife.truth.noise_floor` measures it), the reconstructed sum has a seed scatter
 of relative sd ``c |G| / S``, beside the truth sum's ``c |x| / sum x``. The truth's hours are
@@ -46,7 +47,6 @@ import sys
 from pathlib import Path
 
 import numpy as np
-import scipy.linalg as sla
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import reconstruction as rec  # noqa: E402  (the harness's config and store loaders)
@@ -54,48 +54,13 @@ import reconstruction as rec  # noqa: E402  (the harness's config and store load
 LINE_OUTPUT = "damage_sn"
 
 
-def gp_adjoint(model, hours: np.ndarray, weights: np.ndarray, j: int) -> np.ndarray:
-    """``G = A^T weights`` of GP output ``j`` (``A`` the map from the training values to the
-    posterior mean at ``hours``): ``(R + lambda I)^-1 K_*^T weights``, in correlation units."""
-    from moorlife.gp.covariance import correlation
-    from moorlife.gp.fit import chord_embed
+def carried(model, method: str, points: np.ndarray, weights: np.ndarray, j: int, train: np.ndarray) -> np.ndarray:
+    """``G = A^T weights`` of output ``j`` of one fitted model (the package's ``training_weights``)."""
+    from moorlife import gp, rbf
 
-    z = chord_embed(hours, model.space)
-    acc = np.zeros(model.centres.shape[0])
-    wr = model.wind_ratio[j]
-    gc = model.gates(model.centres, [j])[:, 0] if wr > 0 else None
-    for s in range(0, z.shape[0], 2048):
-        e = min(z.shape[0], s + 2048)
-        k = correlation(z[s:e], model.centres, model.length_scale[j], model.covariance)
-        if wr > 0:
-            gi = model.gates(z[s:e], [j])[:, 0]
-            k += (
-                wr * np.outer(gi, gc) * correlation(z[s:e], model.centres, model.wind_length_scale[j], model.covariance)
-            )
-        acc += k.T @ weights[s:e]
-    return sla.cho_solve((model.chol[j], True), acc)
-
-
-def rbf_adjoint(model, train: np.ndarray, hours: np.ndarray, weights: np.ndarray, j: int) -> np.ndarray:
-    """``G = A^T weights`` of RBF output ``j``: the first ``m`` entries of
-    ``M^-1 [K_*^T weights; P_*^T weights]``, ``M`` the augmented matrix of its shape and ridge."""
-    from moorlife.rbf.fit import model_basis
-    from moorlife.rbf.kernels import gaussian
-    from moorlife.rbf.system import augmented_matrix
-    from moorlife.space import embed, squared_distances
-
-    isdir = model.space.is_direction
-    zc, q, m = model.centres, float(model.shape[j]), model.centres.shape[0]
-    mat = augmented_matrix(
-        squared_distances(zc, zc, isdir), model_basis(train, zc, isdir, model.trend), q, float(model.smoothing[j])
-    )
-    rhs = np.zeros(mat.shape[0])
-    for s in range(0, hours.shape[0], 2048):
-        e = min(hours.shape[0], s + 2048)
-        zh = embed(hours[s:e], model.space)
-        rhs[:m] += gaussian(squared_distances(zh, zc, isdir), q).T @ weights[s:e]
-        rhs[m:] += model_basis(hours[s:e], zh, isdir, model.trend).T @ weights[s:e]
-    return np.linalg.solve(mat, rhs)[:m]
+    if method == "gp":
+        return gp.training_weights(model, points, weights, outputs=[j])[:, 0]
+    return rbf.training_weights(model, points, weights, outputs=[j], train_points=train)[:, 0]
 
 
 def window_c(truth_ds, seed2, line: str, storm: int) -> float:
@@ -151,14 +116,10 @@ def measure(cfg, st, life: bool = False) -> list[dict]:
         p = pred[:, col]
         yt = np.log10(_floored(y[train][:, col].copy(), cols[col]))
         f3 = np.log10(p[:3] / sub.log_factor[j])
-        if model.method == "gp":
-            g = gp_adjoint(sub, xh, p, j)
-            rows3 = np.stack([gp_adjoint(sub, xh[h : h + 1], np.ones(1), j) for h in range(3)])
-            check = np.abs(sub.mean[j] + rows3 @ (yt - sub.mean[j]) - f3)
-        else:
-            g = rbf_adjoint(sub, xt, xh, p, j)
-            rows3 = np.stack([rbf_adjoint(sub, xt, xh[h : h + 1], np.ones(1), j) for h in range(3)])
-            check = np.abs(rows3 @ yt - f3)
+        g = carried(sub, model.method, xh, p, j, xt)
+        rows3 = np.stack([carried(sub, model.method, xh[h : h + 1], np.ones(1), j, xt) for h in range(3)])
+        mean = sub.mean[j] if model.method == "gp" else 0.0
+        check = np.abs(mean + rows3 @ (yt - mean) - f3)
         truth_x = truth_ds[LINE_OUTPUT].sel(line=line).values
         c = window_c(truth_ds, seed2, line, int(cfg["truth"]["second_seed_storm"]))
         s, t = p.sum(), truth_x.sum()
@@ -182,7 +143,7 @@ def measure(cfg, st, life: bool = False) -> list[dict]:
         if life:  # the whole hindcast's sum: its records' term with the window's c
             pa = pred_all[:, col]
             xa = space_points(space, every, model.thrust)
-            ga = gp_adjoint(sub, xa, pa, j) if model.method == "gp" else rbf_adjoint(sub, xt, xa, pa, j)
+            ga = carried(sub, model.method, xa, pa, j, xt)
             ta = np.argsort(-np.abs(ga))[:3]
             row["life"] = (
                 100 * c * np.linalg.norm(ga) / pa.sum(),

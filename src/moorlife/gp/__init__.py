@@ -42,7 +42,8 @@ Modules: :mod:`~moorlife.gp.covariance` (the correlation families and the sea ga
 :mod:`~moorlife.gp.kernels` (scikit-learn kernels of some input columns, and gated by the sea),
 :mod:`~moorlife.gp.fit` (embedding, hyperparameters, conditioning, leave-one-out, the
 models of some outputs) and
-:mod:`~moorlife.gp.predict` (mean, latent variance, back-transform).
+:mod:`~moorlife.gp.predict` (mean, latent variance, back-transform, and the weight each training
+value carries in a weighted sum of the means, :func:`training_weights`).
 """
 
 from __future__ import annotations
@@ -58,7 +59,7 @@ from moorlife.gp.fit import (
     fit_gp,
     select_outputs,
 )
-from moorlife.gp.predict import predict_gp, predict_latent
+from moorlife.gp.predict import predict_gp, predict_latent, training_weights
 
 __all__ = [
     "GP_COVARIANCES",
@@ -72,5 +73,6 @@ __all__ = [
     "fit_gp",
     "predict_gp",
     "predict_latent",
+    "training_weights",
     "select_outputs",
 ]

@@ -227,3 +227,73 @@ def predict_gp(model: GPModel, points: npt.ArrayLike, *, chunk_rows: int = 8192)
         if predictive is not None:
             out[:, logs] *= np.exp(0.5 * _LN10_SQ * var[:, logs])
     return out
+
+
+def training_weights(
+    model: GPModel,
+    points: npt.ArrayLike,
+    weights: npt.ArrayLike,
+    *,
+    outputs: npt.ArrayLike | None = None,
+    chunk_rows: int = 8192,
+) -> np.ndarray:
+    """The weight of each training value in a weighted sum of the posterior means.
+
+    With a constant prior mean ``m`` the posterior mean is linear in the training values ``y``
+    (transformed units: ``log10`` for a log output): ``mu(x_h) - m = sum_i A_hi (y_i - m)``, with
+    ``A = K_* B^-1`` in correlation units (``B`` the training correlation with the noise ratio
+    and any wind term, ``model.chol``). So ``sum_h w_h (mu(x_h) - m) = sum_i G_i (y_i - m)`` with
+    ``G = B^-1 K_*^T w``: ``G_i`` is the part of the sum that training value ``i`` carries. One
+    pass over ``points`` per output and one triangular solve pair. With ``w_h`` the predicted
+    hourly damage of a log output, a relative error ``e_i`` of training record ``i`` moves the
+    damage sum by ``sum_i G_i e_i`` to first order: the records' seed noise in a sum.
+
+    Parameters
+    ----------
+    model : GPModel
+    points : array_like, shape (n, d)
+        Physical units (directions in degrees).
+    weights : array_like, shape (n,) or (n, k)
+        The weights of the sum: one column for each output of ``outputs``, or one for all.
+    outputs : array_like of int, optional
+        The outputs (default every one).
+    chunk_rows : int
+        Rows per block; does not change the result beyond rounding.
+
+    Returns
+    -------
+    numpy.ndarray, shape (m, k)
+
+    Raises
+    ------
+    ValueError
+        With a linear prior mean (its slope is itself fitted to ``y``), or weights of the wrong shape.
+    """
+    if model.slope is not None:
+        raise ValueError("training_weights: a GP with a linear prior mean is not supported")
+    z = chord_embed(points, model.space)
+    n = z.shape[0]
+    outs = np.arange(model.n_outputs) if outputs is None else np.asarray(outputs, dtype=np.int64).reshape(-1)
+    w = np.asarray(weights, dtype=float)
+    w = np.repeat(w[:, None], outs.size, axis=1) if w.ndim == 1 else w
+    if w.shape != (n, outs.size):
+        raise ValueError(f"weights have shape {np.shape(weights)}; expected ({n},) or ({n}, {outs.size})")
+    wr = model.wind_ratio
+    rows = max(1, int(chunk_rows))
+    out = np.zeros((model.centres.shape[0], outs.size))
+    for c, j in enumerate(outs):
+        gc = model.gates(model.centres, [j])[:, 0] if wr[j] > 0 else None
+        acc = np.zeros(model.centres.shape[0])
+        for s in range(0, n, rows):
+            e = min(n, s + rows)
+            k = correlation(z[s:e], model.centres, model.length_scale[j], model.covariance)
+            if wr[j] > 0:
+                gi = model.gates(z[s:e], [j])[:, 0]
+                k += (
+                    wr[j]
+                    * np.outer(gi, gc)
+                    * correlation(z[s:e], model.centres, model.wind_length_scale[j], model.covariance)
+                )
+            acc += k.T @ w[s:e, c]
+        out[:, c] = sla.cho_solve((model.chol[j], True), acc, check_finite=False)
+    return out

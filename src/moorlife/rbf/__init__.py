@@ -48,7 +48,8 @@ Modules: :mod:`~moorlife.rbf.kernels` (Gaussian kernel, weighted sums, polynomia
 augmented system), :mod:`~moorlife.rbf.loocv` (Rippa's leave-one-out choice of shape and
 ridge), :mod:`~moorlife.rbf.transform` (back-transform of ``log10`` outputs),
 :mod:`~moorlife.rbf.choose` (the per-output choice), :mod:`~moorlife.rbf.fit` and
-:mod:`~moorlife.rbf.predict`.
+:mod:`~moorlife.rbf.predict` (values, the nearest centre, and the weight each training value
+carries in a weighted sum of the values, :func:`training_weights`).
 """
 
 from __future__ import annotations
@@ -67,7 +68,7 @@ from moorlife.rbf.loocv import (
     rippa_errors,
     shape_grid,
 )
-from moorlife.rbf.predict import nearest_centre, predict_rbf
+from moorlife.rbf.predict import nearest_centre, predict_rbf, training_weights
 from moorlife.rbf.system import augmented_matrix, kernel_block_inverse, solve_weights
 from moorlife.rbf.transform import RETRANSFORMS, loo_error_in_units, retransform_factor
 from moorlife.rbf.trend import Trend, supported_trend, trend_basis
@@ -107,5 +108,6 @@ __all__ = [
     "OutputChoice",
     "choose_per_output",
     "predict_rbf",
+    "training_weights",
     "nearest_centre",
 ]
