@@ -19,6 +19,7 @@ import scipy.linalg as sla
 from moorlife.gp.covariance import correlation, covariance_code, exponent, prefactor
 from moorlife.gp.fit import _LN10_SQ, GPModel, chord_embed
 from moorlife.rbf.kernels import exp_parts
+from moorlife.rbf.predict import sum_columns
 
 __all__ = ["predict_gp", "predict_latent"]
 
@@ -273,11 +274,7 @@ def training_weights(
         raise ValueError("training_weights: a GP with a linear prior mean is not supported")
     z = chord_embed(points, model.space)
     n = z.shape[0]
-    outs = np.arange(model.n_outputs) if outputs is None else np.asarray(outputs, dtype=np.int64).reshape(-1)
-    w = np.asarray(weights, dtype=float)
-    w = np.repeat(w[:, None], outs.size, axis=1) if w.ndim == 1 else w
-    if w.shape != (n, outs.size):
-        raise ValueError(f"weights have shape {np.shape(weights)}; expected ({n},) or ({n}, {outs.size})")
+    outs, w = sum_columns(weights, n, model.n_outputs, outputs)
     wr = model.wind_ratio
     rows = max(1, int(chunk_rows))
     out = np.zeros((model.centres.shape[0], outs.size))

@@ -88,6 +88,24 @@ def nearest_centre(model: RBFModel, points: npt.ArrayLike) -> tuple[np.ndarray, 
     return dmin, imin
 
 
+def sum_columns(
+    weights: npt.ArrayLike, n: int, n_outputs: int, outputs: npt.ArrayLike | None
+) -> tuple[np.ndarray, np.ndarray]:
+    """The outputs of a weighted sum (default all) and its weights, one column per output.
+
+    Raises
+    ------
+    ValueError
+        If ``weights`` is neither ``(n,)`` nor ``(n, len(outputs))``.
+    """
+    outs = np.arange(n_outputs) if outputs is None else np.asarray(outputs, dtype=np.int64).reshape(-1)
+    w = np.asarray(weights, dtype=float)
+    w = np.repeat(w[:, None], outs.size, axis=1) if w.ndim == 1 else w
+    if w.shape != (n, outs.size):
+        raise ValueError(f"weights have shape {np.shape(weights)}; expected ({n},) or ({n}, {outs.size})")
+    return outs, w
+
+
 def training_weights(
     model: RBFModel,
     points: npt.ArrayLike,
@@ -134,11 +152,7 @@ def training_weights(
     """
     z = embed(points, model.space)
     n, m = z.shape[0], model.centres.shape[0]
-    outs = np.arange(model.n_outputs) if outputs is None else np.asarray(outputs, dtype=np.int64).reshape(-1)
-    w = np.asarray(weights, dtype=float)
-    w = np.repeat(w[:, None], outs.size, axis=1) if w.ndim == 1 else w
-    if w.shape != (n, outs.size):
-        raise ValueError(f"weights have shape {np.shape(weights)}; expected ({n},) or ({n}, {outs.size})")
+    outs, w = sum_columns(weights, n, model.n_outputs, outputs)
     isdir = model.space.is_direction.astype(np.bool_)
     if model.trend is None:  # the polynomial needs only the normalised centres
         basis_c = polynomial_basis(model.centres, isdir)
