@@ -130,6 +130,21 @@ def _groups(length_scale: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return gptr, np.concatenate(members).astype(np.int64)
 
 
+def _cross_correlation(
+    model: GPModel, z: np.ndarray, j: int, gate_centres: np.ndarray | None
+) -> tuple[np.ndarray, np.ndarray | None]:
+    """Correlation of embedded points ``z`` with the centres for output ``j``, the gated wind term
+    included (``gate_centres``: the sea gate at the centres; ``None`` without the term), and the
+    gate at the points (``None`` without the term)."""
+    k = correlation(z, model.centres, model.length_scale[j], model.covariance)
+    if gate_centres is None:
+        return k, None
+    gi = model.gates(z, [j])[:, 0]
+    rw = correlation(z, model.centres, model.wind_length_scale[j], model.covariance)
+    k += model.wind_ratio[j] * np.outer(gi, gate_centres) * rw
+    return k, gi
+
+
 def predict_latent(
     model: GPModel,
     points: npt.ArrayLike,
@@ -189,13 +204,8 @@ def predict_latent(
             gc = model.gates(model.centres, [j])[:, 0] if wr[j] > 0 else None  # the sea gate at the centres, once
             for s in range(0, n, rows):
                 e = min(n, s + rows)
-                k = correlation(z[s:e], model.centres, model.length_scale[j], model.covariance)
-                prior = 1.0
-                if wr[j] > 0:
-                    gi = model.gates(z[s:e], [j])[:, 0]
-                    rw = correlation(z[s:e], model.centres, model.wind_length_scale[j], model.covariance)
-                    k += wr[j] * np.outer(gi, gc) * rw
-                    prior = 1.0 + wr[j] * gi**2
+                k, gi = _cross_correlation(model, z[s:e], j, gc)
+                prior = 1.0 if gi is None else 1.0 + wr[j] * gi**2
                 v = sla.solve_triangular(model.chol[j], k.T, lower=True, check_finite=False)
                 var[s:e, j] = np.maximum(model.signal_var[j] * (prior - np.einsum("ij,ij->j", v, v)), 0.0)
     return mean, var
@@ -283,14 +293,6 @@ def training_weights(
         acc = np.zeros(model.centres.shape[0])
         for s in range(0, n, rows):
             e = min(n, s + rows)
-            k = correlation(z[s:e], model.centres, model.length_scale[j], model.covariance)
-            if wr[j] > 0:
-                gi = model.gates(z[s:e], [j])[:, 0]
-                k += (
-                    wr[j]
-                    * np.outer(gi, gc)
-                    * correlation(z[s:e], model.centres, model.wind_length_scale[j], model.covariance)
-                )
-            acc += k.T @ w[s:e, c]
+            acc += _cross_correlation(model, z[s:e], j, gc)[0].T @ w[s:e, c]
         out[:, c] = sla.cho_solve((model.chol[j], True), acc, check_finite=False)
     return out

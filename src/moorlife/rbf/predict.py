@@ -164,12 +164,13 @@ def training_weights(
     x = np.asarray(points, dtype=float)
     zc_t = np.ascontiguousarray(model.centres.T)
     out = np.zeros((m, outs.size))
+    rows = max(1, int(chunk_rows))
     shape, ridge = model.shape[outs], model.smoothing[outs]
     for q, lam in sorted(set(zip(shape.tolist(), ridge.tolist()))):
         cols = np.flatnonzero((shape == q) & (ridge == lam))
         rhs = np.zeros((m + basis_c.shape[1], cols.size))
-        for s in range(0, n, max(1, int(chunk_rows))):
-            e = min(n, s + max(1, int(chunk_rows)))
+        for s in range(0, n, rows):
+            e = min(n, s + rows)
             d2 = np.empty((e - s, m))
             sq_dist_block(z[s:e], zc_t, isdir, d2)
             rhs[:m] += gaussian(d2, q).T @ w[s:e, cols]
