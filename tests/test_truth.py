@@ -146,6 +146,8 @@ def test_stratified_noise_floor_finds_the_ceiling_an_even_subset_misses():
         err_even.append(abs(even["r_ceiling"][0] - expected))
         err_strat.append(abs(strat["r_ceiling"][0] - expected))
         assert strat["r"][0] == pytest.approx(strat["r_ceiling"][0] ** 2)
+        # the one-hour CV c behind the sum's scatter: 100 c |x| / sum x
+        assert strat["sum_std_pct"][0] == pytest.approx(100 * strat["hour_cv"][0] * np.linalg.norm(x1) / x1.sum())
     assert max(err_strat) < 0.004
     assert np.mean(err_even) > 2 * np.mean(err_strat)
     with pytest.raises(ValueError, match="needs the window"):

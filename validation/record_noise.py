@@ -11,7 +11,7 @@ relative seed error ``e_i`` of record ``i`` moves ``y_i`` by ``e_i / ln 10`` and
 ``G_i`` is the part of the sum that record ``i`` carries (:func:`moorlife.rbf.training_weights`,
 :func:`moorlife.gp.training_weights`). With each record's seed error of relative
 sd ``c`` (the truth's own model, ``var(x) = c^2 x^2``, ``c`` measured on the window's second-seed
-hours as :func:`moorlife.truth.noise_floor` measures it), the reconstructed sum has a seed scatter
+hours by :func:`moorlife.truth.noise_floor`), the reconstructed sum has a seed scatter
 of relative sd ``c |G| / S``, beside the truth sum's ``c |x| / sum x``. The truth's hours are
 independent; the reconstruction's are not: every storm hour near one training state carries that
 one record's error.
@@ -63,16 +63,17 @@ def carried(model, method: str, points: np.ndarray, weights: np.ndarray, j: int,
     return rbf.training_weights(model, points, weights, outputs=[j], train_points=train)[:, 0]
 
 
-def window_c(truth_ds, seed2, line: str, storm: int) -> float:
-    """The relative seed sd of one hour's damage on the window, as :func:`moorlife.truth.noise_floor`."""
-    from moorlife.truth import strata_weights
+def window_noise(truth_ds, seed2, line: str, storm: int) -> tuple[float, float]:
+    """The relative seed sd ``c`` of one hour's damage on the window and the truth sum's seed sd %,
+    from :func:`moorlife.truth.noise_floor` as the truth stage calls it."""
+    from moorlife.truth import noise_floor, strata_weights
 
     idx = truth_ds["hindcast_index"].values
     pos = np.searchsorted(idx, seed2["hindcast_index"].values)
-    w = strata_weights(idx.size, pos, hs=truth_ds["hs"].values, storm=storm) if storm else np.ones(pos.size)
-    a = truth_ds[LINE_OUTPUT].sel(line=line).values[pos]
-    b = seed2[LINE_OUTPUT].sel(line=line).values
-    return float(np.sqrt(np.sum(w * (a - b) ** 2 / 2) / np.sum(w * ((a + b) / 2) ** 2)))
+    w = strata_weights(idx.size, pos, hs=truth_ds["hs"].values, storm=storm) if storm else None
+    x = truth_ds[LINE_OUTPUT].sel(line=line).values[:, None]
+    nf = noise_floor(x[pos], seed2[LINE_OUTPUT].sel(line=line).values[:, None], n_window=idx.size, window=x, weights=w)
+    return float(nf["hour_cv"][0]), float(nf["sum_std_pct"][0])
 
 
 def measure(cfg, st, life: bool = False) -> list[dict]:
@@ -102,17 +103,22 @@ def measure(cfg, st, life: bool = False) -> list[dict]:
     val = 100 * max(abs(pv[:, i].sum() / y[valid][:, i].sum() - 1) for i in dmg)
     every = lifecycle._points(st["hindcast"], "time") if life else None
     pred_all = predict_outputs(model, every) if life else None
+    lines = truth_ds["line"].values.astype(object).astype(str)
+    for line in lines:  # every line's model in the paper's space, before any adjoint
+        k = next(i for i, c in enumerate(model.columns) if cols.index((LINE_OUTPUT, line)) in c)
+        if model.spaces[k] != "paper":
+            raise SystemExit(
+                f"{LINE_OUTPUT}/{line} is fitted in the {model.spaces[k]!r} space; record_noise.py takes 'paper' only"
+            )
+    xh, xt = space_points("paper", hours, model.thrust), space_points("paper", x[train], model.thrust)
+    xa = space_points("paper", every, model.thrust) if life else None
+    ids = cases["case"].values[train]
     rows = []
-    for line in truth_ds["line"].values.astype(object).astype(str):
+    for line in lines:
         col = cols.index((LINE_OUTPUT, line))
         k = next(i for i, c in enumerate(model.columns) if col in c)
-        sub, space = model.models[k], model.spaces[k]
-        if space != "paper":
-            raise SystemExit(
-                f"{LINE_OUTPUT}/{line} is fitted in the {space!r} space; record_noise.py takes 'paper' only"
-            )
+        sub = model.models[k]
         j = int(np.flatnonzero(model.columns[k] == col)[0])
-        xh, xt = space_points(space, hours, model.thrust), space_points(space, x[train], model.thrust)
         p = pred[:, col]
         yt = np.log10(_floored(y[train][:, col].copy(), cols[col]))
         f3 = np.log10(p[:3] / sub.log_factor[j])
@@ -120,12 +126,10 @@ def measure(cfg, st, life: bool = False) -> list[dict]:
         rows3 = np.stack([carried(sub, model.method, xh[h : h + 1], np.ones(1), j, xt) for h in range(3)])
         mean = sub.mean[j] if model.method == "gp" else 0.0
         check = np.abs(mean + rows3 @ (yt - mean) - f3)
-        truth_x = truth_ds[LINE_OUTPUT].sel(line=line).values
-        c = window_c(truth_ds, seed2, line, int(cfg["truth"]["second_seed_storm"]))
-        s, t = p.sum(), truth_x.sum()
-        err, sd_t, sd_r = 100 * (s / t - 1), 100 * c * np.linalg.norm(truth_x) / t, 100 * c * np.linalg.norm(g) / s
+        c, sd_t = window_noise(truth_ds, seed2, line, int(cfg["truth"]["second_seed_storm"]))
+        s = p.sum()
+        err, sd_r = 100 * (s / truth_ds[LINE_OUTPUT].sel(line=line).values.sum() - 1), 100 * c * np.linalg.norm(g) / s
         top = np.argsort(-np.abs(g))[:3]
-        ids = cases["case"].values[train]
         row = dict(
             line=line,
             c=c,
@@ -142,7 +146,6 @@ def measure(cfg, st, life: bool = False) -> list[dict]:
         )
         if life:  # the whole hindcast's sum: its records' term with the window's c
             pa = pred_all[:, col]
-            xa = space_points(space, every, model.thrust)
             ga = carried(sub, model.method, xa, pa, j, xt)
             ta = np.argsort(-np.abs(ga))[:3]
             row["life"] = (
@@ -177,10 +180,10 @@ def main(argv: list[str] | None = None) -> int:
             continue
         for name, cfg in variants.items():
             for r in measure(cfg, st, a.life):
-                carried = ", ".join(f"{i}: {sh:.2f}" for i, sh in r["top"])
+                carriers = ", ".join(f"{i}: {sh:.2f}" for i, sh in r["top"])
                 print(
                     f"| {ms} | {name} | {r['line']} | {r['c']:.3f} | {r['err']:+.1f} | {r['sd_t']:.2f} | {r['sd_r']:.2f} "
-                    f"| {r['z']:+.1f} | {r['z2']:+.1f} | {r['k']:.2f} / {r['k2']:.2f} | {carried} | {r['check']:.0e} |",
+                    f"| {r['z']:+.1f} | {r['z2']:+.1f} | {r['k']:.2f} / {r['k2']:.2f} | {carriers} | {r['check']:.0e} |",
                     flush=True,
                 )
                 if "life" in r:

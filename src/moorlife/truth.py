@@ -398,7 +398,8 @@ def noise_floor(
         per-hour r of a perfect reconstruction against one realisation per hour (below);
         ``sum_difference_pct`` (k,):
         ``100 (sum seed2 - sum seed1) / sum seed1`` over the subset; ``sum_std_pct`` (k,):
-        the seed scatter (one standard deviation) of a sum over the window, in %.
+        the seed scatter (one standard deviation) of a sum over the window, in %; ``hour_cv``
+        (k,): with ``window``, the relative seed sd ``c`` of one hour (below; NaN without it).
 
     Notes
     -----
@@ -460,6 +461,7 @@ def noise_floor(
         "r_ceiling": ceiling,
         "sum_difference_pct": signed_error_pct(b.sum(axis=0), a.sum(axis=0)),
         "sum_std_pct": std_pct,
+        "hour_cv": np.full(a.shape[1], np.nan) if window is None else np.sqrt(c2),
     }
 
 
