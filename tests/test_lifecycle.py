@@ -418,6 +418,23 @@ def test_stores_comparison_and_sensitivity_end_to_end(tmp_path):
         coords={"case": np.arange(4) + 10**6, "line": LINES},
     )
     write_zarr(seeds, tmp_path / "seeds.zarr")
+    # the summary's band takes the seed scatter of the life-cycle sum, from the hourly damage
+    banded = st_compare.run(
+        lifecycles=lcs,
+        discretes=[tmp_path / f"{ms}_disc.zarr" for ms in systems],
+        bins=tmp_path / "bins.zarr",
+        mooring_systems=tmp_path / "ms.tsv",
+        summary=tmp_path / "summary_band.csv",
+        recommendation=tmp_path / "rec_band.yaml",
+        systems=systems,
+        lifecycle={**cfg, "uncertainty": {"coverage": 1.0}},
+        seeds=tmp_path / "seeds.zarr",
+    )
+    cv = st_compare._seed_cv(tmp_path / "seeds.zarr")
+    sigma = lifecycle.band_sigma(open_zarr(tmp_path / "MS1_lc.zarr"), "sn", cv)
+    assert sigma < 0.5 * cv["sn"]  # 1,500 hours average one hour's seed error out
+    r = banded[(banded.mooring_system == "MS1") & (banded.curve == "sn")].iloc[0]
+    assert r.fatigue_life_low == pytest.approx(r.fatigue_life_years / (1 + sigma), rel=1e-12)
     outs = {
         k: tmp_path / "sens" / f"{k}.{'csv' if k.endswith('csv') else 'png'}"
         for k in ("seeds_csv", "seeds_fig", "corrosion_csv", "corrosion_fig", "mean_stress_csv", "mean_stress_fig")

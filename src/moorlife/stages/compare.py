@@ -88,9 +88,9 @@ def run(
         lcs, dds = {}, {}
         for ms, lp, dp in zip(systems, lifecycles, discretes, strict=True):
             lc = open_zarr(lp, load=False)
-            lcs[ms] = lc.drop_vars(
-                [v for v in lc.data_vars if names.TIME in lc[v].dims and v not in ("surge_mpm", "tension_mpm")]
-            ).load()
+            # the hourly damage stays: the band's seed term is the scatter of its sum (band_sigma)
+            keep = ("surge_mpm", "tension_mpm", *lc_mod.DAMAGE_VARS.values())
+            lcs[ms] = lc.drop_vars([v for v in lc.data_vars if names.TIME in lc[v].dims and v not in keep]).load()
             dds[ms] = lc_mod.discrete_damage_table(states, open_zarr(dp), lc.attrs["n_hours"])
         cv = _seed_cv(seeds)
         rec_cfg = fill_section("lifecycle.recommendation", lifecycle.get("recommendation"))
