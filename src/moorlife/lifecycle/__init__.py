@@ -26,23 +26,28 @@ paper's 5-D space, or with the rotor thrust), :mod:`~moorlife.lifecycle.turbulen
 turbulent thrust, a thrust coordinate), :mod:`~moorlife.lifecycle.fit` (fit, with the
 global or per-output choice, prediction and validation metrics),
 :mod:`~moorlife.lifecycle.damage` (damage arithmetic), :mod:`~moorlife.lifecycle.uncertainty`,
+:mod:`~moorlife.lifecycle.records` (the training records' seed noise in a sum),
 :mod:`~moorlife.lifecycle.adapters` (the xarray/pandas adapters) and
 :mod:`~moorlife.lifecycle.sensitivity`.
 """
 
 from __future__ import annotations
 
+from moorlife.lifecycle.adapters import (
+    Fitted,
+    band_sigma,
+    discrete_damage_table,
+    fit_reconstruction,
+    reconstruct_lifecycle,
+    records_term,
+    summary_table,
+    validation_sum_term,
+)
+
 # the private helpers _label, _points and _selection_scaling are re-exported for
 # validation/rbf_thrust_coordinate.py, which rebuilds the matrices of reconstruct_lifecycle
 from moorlife.lifecycle.adapters import _points as _points
 from moorlife.lifecycle.adapters import _selection_scaling as _selection_scaling
-from moorlife.lifecycle.adapters import (
-    band_sigma,
-    discrete_damage_table,
-    reconstruct_lifecycle,
-    summary_table,
-    validation_sum_term,
-)
 from moorlife.lifecycle.damage import (
     DAMAGE_VARS,
     HOURS_PER_YEAR,
@@ -106,6 +111,9 @@ __all__ = [
     "unstack_outputs",
     "validation_metrics",
     "Reconstruction",
+    "Fitted",
+    "fit_reconstruction",
+    "records_term",
     "fit_outputs",
     "gp_groups",
     "predict_outputs",

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -39,12 +40,20 @@ from moorlife.lifecycle.outputs import (
     stack_outputs,
     unstack_outputs,
 )
+from moorlife.lifecycle.records import carried_shares, records_sum_cv
 from moorlife.lifecycle.sensitivity import corrosion_evolution
 from moorlife.lifecycle.settings import RBFSettings
 from moorlife.lifecycle.spaces import ThrustCoordinate
 from moorlife.lifecycle.uncertainty import band_sigma_of, error_indicator, life_band, suggest_states, sum_seed_cv
 
-__all__ = ["reconstruct_lifecycle", "discrete_damage_table", "summary_table"]
+__all__ = [
+    "Fitted",
+    "fit_reconstruction",
+    "records_term",
+    "reconstruct_lifecycle",
+    "discrete_damage_table",
+    "summary_table",
+]
 
 log = logging.getLogger("moorlife.lifecycle")
 
@@ -230,6 +239,87 @@ def _uncertainty_vars(
     return out
 
 
+@dataclass(frozen=True)
+class Fitted:
+    """A fitted reconstruction with the states and values it was fitted on (:func:`fit_reconstruction`).
+
+    ``case`` the simulated case ids (sorted), ``points`` (n, 5) and ``values`` (n, n_out) of each,
+    ``train`` and ``valid`` their roles, ``records`` the simulated records averaged in each
+    training value (None: one each), ``lo`` and ``span`` the selection's normalisation.
+    """
+
+    model: Reconstruction
+    cols: list[tuple[str, str | None]]
+    case: np.ndarray
+    points: np.ndarray
+    values: np.ndarray
+    train: np.ndarray
+    valid: np.ndarray
+    records: np.ndarray | None
+    lo: np.ndarray | None
+    span: np.ndarray | None
+
+
+def fit_reconstruction(
+    cases: xr.Dataset, sims: xr.Dataset, *, settings: RBFSettings, thrust: ThrustCoordinate | None = None
+) -> Fitted:
+    """The reconstruction of every output, fitted on the simulated training states.
+
+    The fit of :func:`reconstruct_lifecycle`, also what the truth stage refits to take a window's
+    records' term (:func:`moorlife.lifecycle.records.carried_shares`). Deterministic: the same
+    stores and settings give the same model, bit for bit.
+
+    Parameters
+    ----------
+    cases, sims : xarray.Dataset
+        As :func:`reconstruct_lifecycle`'s (``sims`` may hold ``n_records``, the seed replicates
+        averaged per case).
+    settings : RBFSettings
+    thrust : ThrustCurve, optional
+    """
+    dim = names.CASE
+    common = np.intersect1d(cases[dim].values, sims[dim].values)
+    cases = cases.sel({dim: common})
+    sims = sims.sel({dim: common})
+    role = np.array([str(v) for v in cases["role"].values])
+    train, valid = role == "train", role == "validate"
+    if train.sum() < 8:
+        raise ValueError(f"only {int(train.sum())} training cases are simulated; the RBF needs at least 8")
+    cols = output_columns(sims, dim, settings.outputs)
+    y = stack_outputs(sims, dim, cols)
+    bad = ~np.isfinite(y)
+    if bad.any():
+        i, j = np.argwhere(bad)[0]
+        raise ValueError(f"simulations: {_label(cols[j])} is not finite for case {int(common[i])} ({y[i, j]!r})")
+    x = _points(cases, dim)
+    lo, span = _selection_scaling(cases)
+    model = fit_outputs(x[train], y[train], cols, settings, lo=lo, span=span, thrust=thrust)
+    records = np.asarray(sims["n_records"].values[train], dtype=float) if "n_records" in sims else None
+    return Fitted(model, list(cols), common, x, y, train, valid, records, lo, span)
+
+
+def records_term(fitted: Fitted, points: np.ndarray, predicted: np.ndarray, chunk_rows: int = 8192) -> np.ndarray:
+    """Per output, the relative seed sd of its sum over ``points`` per unit record CV (NaN: not a damage).
+
+    :func:`moorlife.lifecycle.records.records_sum_cv` of the damage outputs'
+    :func:`~moorlife.lifecycle.records.carried_shares`, with the seed replicates of each training state.
+    A GP with a linear prior mean (its slope is fitted to the records too) has none: all NaN, logged.
+    """
+    cols = fitted.cols
+    dmg = [j for j, c in enumerate(cols) if c[0].startswith("damage")]
+    out = np.full(len(cols), np.nan)
+    if fitted.model.method == "gp" and any(getattr(m, "slope", None) is not None for m in fitted.model.models):
+        log.warning("the GP's linear prior mean has no records' term: the life band leaves it out")
+        return out
+    if dmg:
+        t = fitted.train
+        g = carried_shares(
+            fitted.model, points, predicted, fitted.values[t], fitted.points[t], dmg, chunk_rows=chunk_rows
+        )
+        out[dmg] = records_sum_cv(g, fitted.records)
+    return out
+
+
 def reconstruct_lifecycle(
     hindcast: xr.Dataset,
     cases: xr.Dataset,
@@ -273,23 +363,9 @@ def reconstruct_lifecycle(
         the life-cycle damage, yearly and design-life damage, fatigue life, DFF and verdict;
         the adaptive-selection suggestions.
     """
-    dim = names.CASE
-    common = np.intersect1d(cases[dim].values, sims[dim].values)
-    cases = cases.sel({dim: common})
-    sims = sims.sel({dim: common})
-    role = np.array([str(v) for v in cases["role"].values])
-    train, valid = role == "train", role == "validate"
-    if train.sum() < 8:
-        raise ValueError(f"only {int(train.sum())} training cases are simulated; the RBF needs at least 8")
-    cols = output_columns(sims, dim, settings.outputs)
-    y = stack_outputs(sims, dim, cols)
-    bad = ~np.isfinite(y)
-    if bad.any():
-        i, j = np.argwhere(bad)[0]
-        raise ValueError(f"simulations: {_label(cols[j])} is not finite for case {int(common[i])} ({y[i, j]!r})")
-    x = _points(cases, dim)
-    lo, span = _selection_scaling(cases)
-    model = fit_outputs(x[train], y[train], cols, settings, lo=lo, span=span, thrust=thrust)
+    fitted = fit_reconstruction(cases, sims, settings=settings, thrust=thrust)
+    model, cols, x, y, common = fitted.model, fitted.cols, fitted.points, fitted.values, fitted.case
+    train, valid, lo, span = fitted.train, fitted.valid, fitted.lo, fitted.span
     labels = [_label(c) for c in cols]
     if model.method == "gp":
         inputs, ls_all, sig, noise = _gp_records(model)
@@ -373,6 +449,10 @@ def reconstruct_lifecycle(
                 arr[is_dmg] = am[k]
                 text = f"validation {k}, damage {other}"
                 out[f"validation_{k}_other_transform"] = ("output", arr, _a(text))
+    if is_dmg.any():
+        rc = records_term(fitted, hp, pred, chunk_rows=settings.chunk_rows)
+        text = "seed sd of the life-cycle sum from the training records, per unit seed CV of one record"
+        out["records_sum_cv"] = ("output", rc, _a(text))
     n_hours = hindcast.sizes[names.TIME]
     out = _damage_vars(out, n_hours, fatigue.fatigue_settings(fatigue_cfg))
     out = _uncertainty_vars(out, model, hp, y[train], cols, n_suggest)
@@ -457,21 +537,31 @@ def validation_sum_term(lc: xr.Dataset, curve: str) -> float:
 def band_sigma(lc: xr.Dataset, curve: str, seed_cv: Mapping[str, float] | None = None) -> float:
     """Relative standard deviation of one curve's life-cycle damage, the half-width of the life band over k.
 
-    ``hypot(seed scatter of the sum, max |validation sum error|)`` (:func:`band_sigma_of`):
+    ``sqrt(seed scatter^2 + records' scatter^2 + max |validation sum error|^2)``, the largest
+    over the lines of the curve:
 
-    - the seed scatter of the life-cycle sum, :func:`sum_seed_cv` of the curve's hourly damage in
-      ``lc`` with the seed CV of one hour (``seed_cv[curve]``, 0 when absent), the largest over
-      the lines. A sum over many hours averages the seed error of each: over a 30-year hindcast
-      it is a fraction of a per cent where one hour's CV is 15-20 %. When ``lc`` has no hourly
-      damage, one hour's CV itself (an upper bound);
+    - the seed scatter of the life-cycle sum, :func:`sum_seed_cv` of the line's hourly damage in
+      ``lc`` with the seed CV of one hour (``seed_cv[curve]``, 0 when absent). A sum over many
+      hours averages the seed error of each: over a 30-year hindcast it is a fraction of a per
+      cent where one hour's CV is 15-20 %. When ``lc`` has no hourly damage, one hour's CV itself
+      (an upper bound);
+    - the training records' seed scatter in the reconstructed sum, the same CV times ``lc``'s
+      ``records_sum_cv`` of the line (:mod:`moorlife.lifecycle.records`; left out of a store
+      written without it): the reconstruction's hours share their training records, whose
+      errors do not average out;
     - :func:`validation_sum_term`, the error of the fit.
     """
     cv = float((seed_cv or {}).get(curve, 0.0))
     var = DAMAGE_VARS[curve]
     seed = cv
     if cv > 0 and var in lc and names.TIME in lc[var].dims:
-        hourly = lc[var].transpose(names.TIME, ...).values.reshape(lc.sizes[names.TIME], -1)
-        seed = float(np.max(sum_seed_cv(hourly, cv)))
+        h = lc[var].transpose(names.TIME, ...)
+        per_line = sum_seed_cv(h.values.reshape(lc.sizes[names.TIME], -1), cv)
+        if "records_sum_cv" in lc and h.ndim == 2:
+            labels = [f"{var}/{ln}" for ln in h[h.dims[1]].values]
+            rc = lc["records_sum_cv"].sel(output=labels).values
+            per_line = np.hypot(per_line, cv * np.nan_to_num(rc))
+        seed = float(np.max(per_line))
     return float(band_sigma_of(seed, validation_sum_term(lc, curve)))
 
 
