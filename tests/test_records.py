@@ -138,3 +138,25 @@ def test_gp_records_term_matches_its_kernel_and_skips_a_linear_mean():
     )
     assert np.all(np.isnan(lifecycle.records_term(linear, hp, lifecycle.predict_outputs(linear.model, hp))))
 
+
+def test_window_records_refit_checks_the_store_and_takes_the_windows_hours():
+    from moorlife.stages.truth import window_records
+
+    hc, cases, sims = _stores()
+    settings = _settings()
+    lc = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=2)
+    fitted = lifecycle.fit_reconstruction(cases, sims, settings=settings)
+    hours = np.arange(200, 500)
+    got = window_records(fitted, lc, hours, source="lc.zarr")
+    hp = lifecycle._points(hc.isel(time=hours), "time")
+    expect = lifecycle.records_term(fitted, hp, lifecycle.predict_outputs(fitted.model, hp))
+    assert got == {
+        f"damage_sn/{ln}": pytest.approx(expect[fitted.cols.index(("damage_sn", ln))], rel=1e-12) for ln in LINES
+    }
+    # a window of 300 hours rests on fewer records than 1,500: its term is larger
+    assert all(got[k] > lc["records_sum_cv"].sel(output=k) for k in got)
+    # a store built from other simulations is refused, naming it and the hour
+    other = sims.copy(deep=True)
+    other["damage_sn"] = other["damage_sn"] * 1.01
+    with pytest.raises(ValueError, match=r"lc.zarr: damage_sn/M1 at hindcast hour 200 .* other simulations"):
+        window_records(lifecycle.fit_reconstruction(cases, other, settings=settings), lc, hours, source="lc.zarr")

@@ -446,12 +446,18 @@ def test_truth_window_end_to_end(truth_study):
         lc["surge_mpm"].isel(time=tr["hindcast_index"].values).values,
     )
     np.testing.assert_array_equal(cmp["truth"].sel(output="damage_sn/M2").values, tr["damage_sn"].sel(line="M2").values)
-    # the window's band holds the fit's validation term beside the measured seed scatter
+    # the window's band holds the fit's validation term beside the two measured seed scatters:
+    # the truth's hours and the reconstruction's training records (refitted, checked against lc)
+    rec = cmp["records_sum_std_pct"].values
+    assert np.all(np.isfinite(rec)) and np.all(rec > 0)
     for cv in ("sn", "tn"):
         val = 100 * lifecycle.validation_sum_term(lc, cv)
         assert val > 0
+        seed, recs = (cmp[k].sel(curve=cv).values for k in ("seed_sum_std_pct", "records_sum_std_pct"))
+        np.testing.assert_allclose(cmp["band_sigma_pct"].sel(curve=cv).values, np.sqrt(seed**2 + recs**2 + val**2))
         np.testing.assert_allclose(
-            cmp["band_sigma_pct"].sel(curve=cv).values, np.hypot(cmp["seed_sum_std_pct"].sel(curve=cv).values, val)
+            cmp["bias_z"].sel(curve=cv).values,
+            cmp["reconstruction_error_pct"].sel(curve=cv).values / np.hypot(seed, recs),
         )
     # nothing left to do; the default target does not contain the truth
     dry = smk(w, TARGET, "-n", overlays=_ov())
@@ -652,3 +658,21 @@ def test_compare_window_band_and_the_coverage_it_needs():
     expected = np.hypot(seed, 8.0)  # the largest |validation sum error| of the curve, in %
     np.testing.assert_allclose(cmp["band_sigma_pct"].values, expected, rtol=1e-12)
     np.testing.assert_allclose(cmp["coverage_needed"].values, 10.0 / expected, rtol=1e-12)
+    assert "records_sum_std_pct" not in cmp  # not measured: not in the band
+    with np.errstate(divide="ignore"):
+        np.testing.assert_allclose(cmp["bias_z"].values, 10.0 / seed, rtol=1e-12)  # inf: no noise on M3
+    # the records' term: the window's CV of one hour times the sum's sd per unit record CV
+    records = {"damage_sn/M1": 0.5, "damage_sn/M2": 0.2, "damage_sn/M3": 0.1}
+    cmp = T.compare_window(truth, rec, states, sims, outputs=["surge_mpm", "damage_sn"], seed2=seed2, records=records)
+    x = truth["damage_sn"].transpose("case", "line").values
+    c = T.noise_floor(x[[0, 13, 26, 39]], seed2["damage_sn"].transpose("case", "line").values, window=x)["hour_cv"]
+    recs = 100 * c * np.array([0.5, 0.2, 0.1])
+    np.testing.assert_allclose(cmp["records_sum_std_pct"].values[0], recs, rtol=1e-12)
+    both = np.hypot(seed, recs)
+    np.testing.assert_allclose(cmp["band_sigma_pct"].values, np.hypot(both, 8.0), rtol=1e-12)
+    with np.errstate(divide="ignore"):
+        np.testing.assert_allclose(cmp["bias_z"].values, 10.0 / both, rtol=1e-12)
+    with pytest.raises(ValueError, match="records' term: no value for .*damage_sn/M3"):
+        T.compare_window(
+            truth, rec, states, sims, outputs=["damage_sn"], seed2=seed2, records={"damage_sn/M1": 1, "damage_sn/M2": 1}
+        )

@@ -36,7 +36,11 @@ the noise is limited by interpolation, not by the seed.
 
 The bias test: for each line and curve, ``z = (reconstruction - truth) / sd``, with ``sd`` the seed
 scatter of the truth's window sum (``seed_sum_std_pct``, from the second-seed hours). ``|z| <= 2``
-is "within the seed noise". Systematic bias shows as z of one sign on every line.
+is "within the seed noise". Systematic bias shows as z of one sign on every line. Beside it, the
+comparison's ``bias_z``, against both noises of the difference: the truth's and the seed scatter of
+the reconstructed sum from its training records (``records_sum_std_pct``; the variant refitted
+on the window's hours, :func:`moorlife.stages.truth.window_records`), printed as ``z truth / z both``.
+The life band on the window carries the records' term too, as the truth comparison's does.
 """
 
 from __future__ import annotations
@@ -212,6 +216,13 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
         thrust=thrust_for(settings, ROOT / cfg["platform"], cfg["simulation"]["wind"]),
     )
     cpu = time.process_time() - t0
+    records = None
+    if stores.get("truth") is not None and stores.get("seed2") is not None:  # the records' term: refit, not timed
+        from moorlife.stages.truth import window_records
+
+        thrust = thrust_for(settings, ROOT / cfg["platform"], cfg["simulation"]["wind"])
+        fitted = lifecycle.fit_reconstruction(cases, sims, settings=settings, thrust=thrust)
+        records = window_records(fitted, lc, stores["truth"]["hindcast_index"].values, source=f"{ms} ({work})")
     out: dict[str, Any] = {"cpu": cpu, "n_train": int(lc.attrs["n_train"])}
     out["validation_r"] = pd.Series(lc["validation_r"].values, index=lc["output"].values.astype(object).astype(str))
     out["loo"] = pd.Series(lc["loo_rmse_units"].values, index=out["validation_r"].index)  # training states only
@@ -230,6 +241,7 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
             outputs=list(settings.outputs),
             seed2=stores.get("seed2"),
             second_seed_storm=cfg["truth"]["second_seed_storm"],
+            records=records,
         )
         out["truth_r"] = pd.Series(cmp["r"].values, index=cmp["output"].values.astype(object).astype(str))
         for k in ("noise_r", "ceiling_r"):  # from the second seed (truth_seed2.zarr), when it exists
@@ -239,6 +251,8 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
         if "seed_sum_std_pct" not in dmg:  # no second seed: no seed scatter, no z
             dmg["seed_sum_std_pct"] = np.nan
         dmg["z"] = dmg["reconstruction_error_pct"] / dmg["seed_sum_std_pct"]
+        if "bias_z" not in dmg:
+            dmg["bias_z"] = np.nan
         # band_sigma_pct and coverage_needed: the life band on the window, as the comparison
         # writes them (moorlife.truth; validation/band_calibration.py reads the same columns)
         out["window"] = dmg
@@ -380,7 +394,8 @@ def report(res: dict[tuple[str, str], dict[str, Any]], variants: list[str]) -> s
                 lines.append(f"| {ms} | ceiling, sqrt | | | " + " | ".join(f"{ceil[o]:.3f}" for o in dl) + " |")
         lines += [
             "",
-            "### Window damage: reconstruction error % against the truth (z = error / seed sd of the sum)",
+            "### Window damage: reconstruction error % against the truth (z truth / z both: error / seed sd "
+            "of the truth's sum, and / hypot of it and the training records' sd of the reconstructed sum)",
             "",
         ]
         keys = list(next(iter(with_truth.values()))["window"].index)
@@ -390,9 +405,18 @@ def report(res: dict[tuple[str, str], dict[str, Any]], variants: list[str]) -> s
             w = m["window"]
             lines.append(
                 f"| {ms} | {v} | "
-                + " | ".join(f"{w.loc[k, 'reconstruction_error_pct']:+.1f} (z {w.loc[k, 'z']:+.1f})" for k in keys)
+                + " | ".join(
+                    f"{w.loc[k, 'reconstruction_error_pct']:+.1f} (z {w.loc[k, 'z']:+.1f} / {w.loc[k, 'bias_z']:+.1f})"
+                    for k in keys
+                )
                 + " |"
             )
+            if "records_sum_std_pct" in w:
+                lines.append(
+                    f"| {ms} | {v}: records' sd % | "
+                    + " | ".join(f"{w.loc[k, 'records_sum_std_pct']:.2f}" for k in keys)
+                    + " |"
+                )
             if v == variants[0]:
                 lines.append(
                     f"| {ms} | bins | " + " | ".join(f"{w.loc[k, 'bins_error_pct']:+.1f}" for k in keys) + " |"

@@ -22,7 +22,7 @@ module holds the arithmetic of that comparison, numpy in and numpy out:
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -357,6 +357,8 @@ WINDOW_DAMAGE_VARS: tuple[str, ...] = (
     "bins_error_pct",
     "seed_sum_std_pct",
     "seed_sum_difference_pct",
+    "records_sum_std_pct",
+    "bias_z",
     "band_sigma_pct",
     "coverage_needed",
 )
@@ -473,26 +475,41 @@ def _a(long_name: str, units: str = "1") -> dict[str, str]:
 
 
 def _band_vars(out: xr.Dataset, reconstruction: xr.Dataset, curves: Sequence[str]) -> xr.Dataset:
-    """The life band on the window, and the coverage factor it needs to hold the truth.
+    """The bias test and the life band on the window, and the coverage factor the band needs.
 
-    The band's sd on the window is :func:`moorlife.lifecycle.band_sigma_of` of the window's
-    measured seed scatter (``seed_sum_std_pct``; 0 without the second seed) and the fit's
-    :func:`moorlife.lifecycle.validation_sum_term` (the reconstruction's validation states);
+    Two seed scatters of the window's sum: the truth's, ``seed_sum_std_pct`` (its hours are
+    independent realisations), and the reconstruction's, ``records_sum_std_pct`` (its training
+    records, shared by the hours near each; :mod:`moorlife.lifecycle.records`). Either is 0 when
+    not measured. ``bias_z = reconstruction_error_pct / hypot(both)``: the error in units of the
+    noise of the difference of two noisy sums; ``|bias_z| <= 2`` is within the seed noise.
+
+    The band's sd on the window is ``sqrt(seed^2 + records^2 + validation^2)``
+    (:func:`moorlife.lifecycle.band_sigma_of` of the two scatters and the fit's
+    :func:`moorlife.lifecycle.validation_sum_term`, the life band's terms);
     ``coverage_needed`` is ``|reconstruction_error_pct| / band_sigma_pct``, what
     ``lifecycle.uncertainty.coverage`` must be for the truth to lie inside the band.
     """
     cd = (names.CURVE, names.LINE)
+    err = out["reconstruction_error_pct"].values
     val = np.array([100.0 * lifecycle.validation_sum_term(reconstruction, cv) for cv in curves])[:, None]
-    seed = out["seed_sum_std_pct"].values if "seed_sum_std_pct" in out else np.zeros_like(val)
-    sigma = lifecycle.band_sigma_of(seed, np.broadcast_to(val, out["reconstruction_error_pct"].shape))
+    zero = np.zeros_like(err)
+    seed = out["seed_sum_std_pct"].values if "seed_sum_std_pct" in out else zero
+    rec = out["records_sum_std_pct"].values if "records_sum_std_pct" in out else zero
+    noise = np.hypot(seed, rec)
+    if "seed_sum_std_pct" in out:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            z = err / noise  # +-inf for an error beside no noise, NaN for neither
+        text = "reconstruction_error_pct / hypot(seed_sum_std_pct, records_sum_std_pct): the bias test"
+        out["bias_z"] = (cd, z, _a(text))
+    sigma = lifecycle.band_sigma_of(noise, np.broadcast_to(val, err.shape))
     out["band_sigma_pct"] = (
         cd,
         sigma,
-        _a("life band sd on the window: hypot(seed scatter of the sum, max |validation sum error|)", "%"),
+        _a("life band sd on the window: sqrt(seed^2 + records^2 + max |validation sum error|^2)", "%"),
     )
     out["coverage_needed"] = (
         cd,
-        lifecycle.coverage_needed(out["reconstruction_error_pct"].values, sigma),
+        lifecycle.coverage_needed(err, sigma),
         _a("|reconstruction error| / band_sigma_pct: the coverage factor that holds the truth"),
     )
     return out
@@ -507,6 +524,7 @@ def compare_window(
     outputs: Sequence[str],
     seed2: xr.Dataset | None = None,
     second_seed_storm: int = 0,
+    records: Mapping[str, float] | None = None,
 ) -> xr.Dataset:
     """Compare the reconstruction with the simulated truth on the window.
 
@@ -525,6 +543,12 @@ def compare_window(
     second_seed_storm : int
         ``truth.second_seed_storm``: the subset's storm stratum (:func:`second_seed_subset`);
         with it the noise floor is weighted by :func:`strata_weights` and is the window's.
+    records : mapping of str to float, optional
+        Per damage output (``"damage_sn/M1"``), the reconstructed window sum's seed sd from its
+        training records per unit seed CV of one record
+        (:func:`moorlife.lifecycle.records_term` on the window's hours). With ``seed2``, times
+        the window's measured CV of one hour (``hour_cv`` of :func:`noise_floor`) it is
+        ``records_sum_std_pct``, in the bias test and the band (:func:`_band_vars`).
 
     Returns
     -------
@@ -654,6 +678,15 @@ def compare_window(
                     [[noise[key][pos_of[f"{lifecycle.DAMAGE_VARS[cv]}/{ln}"]] for ln in lines] for cv in curves]
                 )
                 out[f"seed_{key}"] = (cd, vals, _a(text, "%"))
+            if records is not None:
+                cv = {lab: noise["hour_cv"][j] for lab, j in pos_of.items()}
+                keys = [[f"{lifecycle.DAMAGE_VARS[c_]}/{ln}" for ln in lines] for c_ in curves]
+                missing = [k for row in keys for k in row if k not in records]
+                if missing:
+                    raise ValueError(f"records' term: no value for {missing}")
+                vals = np.array([[100.0 * cv[k] * records[k] for k in row] for row in keys])
+                text = "seed scatter (1 sd) of the reconstructed sum from its training records, % of the sum"
+                out["records_sum_std_pct"] = (cd, vals, _a(text, "%"))
         out = _band_vars(out, reconstruction, curves)
     out.attrs.update(
         {

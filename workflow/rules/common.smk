@@ -50,6 +50,18 @@ N_MDA = (
 )
 
 
+# What a system's reconstruction is fitted on: the lifecycle rule's inputs, and the truth
+# comparison's, which refits it for the records' term of its window.
+FIT_INPUTS = dict(
+    cases="results/selection/cases.zarr",
+    simulations="results/{ms}/simulations.zarr",
+    platform_cfg=config["platform"],
+    rounds=expand("results/{{ms}}/rounds/picks_{r}.zarr", r=ROUNDS),
+    round_simulations=expand("results/{{ms}}/rounds/simulations_{r}.zarr", r=ROUNDS),
+    replicates=expand("results/{{ms}}/replicates/simulations_{j}.zarr", j=REPLICATE_SEEDS),
+)
+
+
 def earlier_rounds(kind):
     """Input function: the ``kind`` stores (picks or simulations) of the rounds before ``{r}``."""
 

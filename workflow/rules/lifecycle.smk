@@ -7,13 +7,8 @@
 
 rule lifecycle:
     input:
+        **FIT_INPUTS,
         hindcast="results/metocean/hindcast.zarr",
-        cases="results/selection/cases.zarr",
-        simulations="results/{ms}/simulations.zarr",
-        platform_cfg=config["platform"],
-        rounds=expand("results/{{ms}}/rounds/picks_{r}.zarr", r=ROUNDS),
-        round_simulations=expand("results/{{ms}}/rounds/simulations_{r}.zarr", r=ROUNDS),
-        replicates=expand("results/{{ms}}/replicates/simulations_{j}.zarr", j=REPLICATE_SEEDS),
     output:
         store=directory("results/{ms}/lifecycle.zarr"),
     log:

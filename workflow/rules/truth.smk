@@ -1,6 +1,7 @@
 # Stage 'truth' (opt-in, outside rule all): simulate every hour of the window truth.window
 # (every truth.stride-th) for one mooring system with the simulate stage as it is (use rule), a second seed
-# on truth.n_second_seed of them, and compare lifecycle.zarr and the 35 bins with that truth.
+# on truth.n_second_seed of them, and compare lifecycle.zarr and the 35 bins with that truth. The
+# comparison refits the system's reconstruction (FIT_INPUTS) for the records' term of its window.
 #   snakemake --cores 2 results/MS2/truth_comparison.zarr
 # The truth keys are checked against the hindcast period when the DAG is built, before any job
 # (truth_checked_hindcast in common.smk).
@@ -68,6 +69,7 @@ use rule simulate_cases as truth_simulate_seed2 with:
 
 rule truth_compare:
     input:
+        **FIT_INPUTS,
         truth="results/{ms}/truth.zarr",
         seed2="results/{ms}/truth_seed2.zarr",
         lifecycle="results/{ms}/lifecycle.zarr",
@@ -97,5 +99,7 @@ rule truth_compare:
     params:
         outputs=config["lifecycle"]["rbf"]["outputs"],
         second_seed_storm=config["truth"]["second_seed_storm"],
+        # the lifecycle rule's fit, refitted for the records' term of the window's sums
+        lifecycle=result_settings(config, "lifecycle", keys=("rbf",)),
     script:
         "../scripts/truth_compare.py"

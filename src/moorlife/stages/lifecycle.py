@@ -19,7 +19,7 @@ from moorlife.settings import fill_section
 from moorlife.stages import logged, thrust_for
 from moorlife.stages.rounds import merged
 
-__all__ = ["run", "figures"]
+__all__ = ["run", "refit", "figures"]
 
 
 PathLike = str | os.PathLike[str]
@@ -79,9 +79,8 @@ def run(
             rbf_cfg["chunk_rows"] = int(chunk_rows)
         settings = lc_mod.rbf_settings(rbf_cfg, source="config.yaml")
         thrust = thrust_for(settings, platform_cfg, wind)
-        cs, sims = merged(cases, simulations, rounds, round_simulations)
+        cs, sims = _training(cases, simulations, rounds, round_simulations, replicates)
         if replicates:
-            sims = average_replicates(sims, [open_zarr(p) for p in replicates])
             logger.info(
                 "seed replicates: %d records of each of the cases %s averaged",
                 1 + len(replicates),
@@ -129,6 +128,43 @@ def run(
         }
         write_zarr(ds, store, encoding=enc)
         return ds
+
+
+def _training(
+    cases: PathLike,
+    simulations: PathLike,
+    rounds: Sequence[PathLike],
+    round_simulations: Sequence[PathLike],
+    replicates: Sequence[PathLike],
+) -> tuple[xr.Dataset, xr.Dataset]:
+    """The cases and simulations a reconstruction is fitted on: the MDA states, the adaptive
+    rounds' picks, and the mean of the seed replicates' records where there are any."""
+    cs, sims = merged(cases, simulations, rounds, round_simulations)
+    if replicates:
+        sims = average_replicates(sims, [open_zarr(p) for p in replicates])
+    return cs, sims
+
+
+def refit(
+    *,
+    cases: PathLike,
+    simulations: PathLike,
+    lifecycle: Mapping[str, Any],
+    platform_cfg: PathLike | None = None,
+    wind: Mapping[str, Any] | None = None,
+    rounds: Sequence[PathLike] = (),
+    round_simulations: Sequence[PathLike] = (),
+    replicates: Sequence[PathLike] = (),
+) -> lc_mod.Fitted:
+    """The reconstruction :func:`run` fits, fitted again from the same stores and settings.
+
+    For the truth comparison's records' term (:func:`moorlife.stages.truth.run`), which needs
+    the model on the window's hours. Deterministic: the model of :func:`run`, bit for bit. The
+    arguments are :func:`run`'s.
+    """
+    settings = lc_mod.rbf_settings(dict(lifecycle.get("rbf") or {}), source="config.yaml")
+    cs, sims = _training(cases, simulations, rounds, round_simulations, replicates)
+    return lc_mod.fit_reconstruction(cs, sims, settings=settings, thrust=thrust_for(settings, platform_cfg, wind))
 
 
 def figures(

@@ -10,7 +10,10 @@ Rules (``workflow/rules/truth.smk``), opt-in, outside ``rule all``:
 * ``truth_simulate`` / ``truth_simulate_seed2``: the simulate stage as it is
   (``use rule simulate_cases``, :func:`moorlife.stages.simulate.run`) on those stores, streams
   ``"truth"`` and ``"truth_seed2"``;
-* ``truth_compare``: :func:`run`, the store, the CSV and the two figures.
+* ``truth_compare``: :func:`run`, the store, the CSV and the two figures. It refits the
+  system's reconstruction from the lifecycle rule's inputs (checked against ``lifecycle.zarr``
+  on the window) for the training records' seed scatter of the window's sums
+  (:func:`window_records`), in the bias test and the band.
 """
 
 from __future__ import annotations
@@ -25,11 +28,12 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from moorlife import lifecycle as lc_mod
 from moorlife import names
 from moorlife import truth as kernels
 from moorlife.io import open_zarr, save_figure, write_zarr
 
-__all__ = ["hours_store", "seed2_store", "comparison_table", "run"]
+__all__ = ["hours_store", "seed2_store", "comparison_table", "window_records", "run"]
 
 PathLike = str | os.PathLike[str]
 log = logging.getLogger(__name__)
@@ -109,6 +113,38 @@ def comparison_table(cmp: xr.Dataset) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+def window_records(fitted: lc_mod.Fitted, lc: xr.Dataset, hours: np.ndarray, *, source: str) -> dict[str, float]:
+    """Per damage output, the window sum's seed sd from its training records per unit record CV.
+
+    :func:`moorlife.lifecycle.records_term` of the refitted reconstruction on the window's hours
+    (``hours``, positions along ``lc``'s time), weighted by ``lc``'s own hourly damage.
+
+    Raises
+    ------
+    ValueError
+        If the refit does not reproduce ``lc``'s damage on the window (to 1e-9 relative): the store
+        was not built from these simulations and settings.
+    """
+    idx = np.asarray(hours, dtype=np.int64)
+    sub = lc.isel({names.TIME: idx})
+    points = np.column_stack([sub[v].values for v in names.METOCEAN_VARS])
+    pred = lc_mod.predict_outputs(fitted.model, points)
+    labels = [lc_mod._label(c) for c in fitted.cols]
+    stored = pred.copy()
+    for j, (var, line) in enumerate(fitted.cols):
+        if var in lc_mod.DAMAGE_VARS.values() and var in sub:
+            stored[:, j] = sub[var].sel({names.LINE: line}).values if line is not None else sub[var].values
+            bad = ~np.isclose(pred[:, j], stored[:, j], rtol=1e-9, atol=0.0)
+            if bad.any():
+                h = int(np.flatnonzero(bad)[0])
+                raise ValueError(
+                    f"{source}: {labels[j]} at hindcast hour {int(idx[h])} is {stored[h, j]!r}, a refit from the "
+                    f"lifecycle rule's inputs gives {pred[h, j]!r}: the store was built from other simulations or settings"
+                )
+    term = lc_mod.records_term(fitted, points, stored)
+    return {lab: float(v) for lab, v in zip(labels, term) if np.isfinite(v)}
+
+
 def run(
     truth: PathLike,
     truth_seed2: PathLike | None,
@@ -120,12 +156,15 @@ def run(
     compared: Sequence[str],
     mooring_system: str,
     second_seed_storm: int = 0,
+    fit: Mapping[str, Any] | None = None,
 ) -> xr.Dataset:
     """Compare ``lifecycle.zarr`` with the truth; write the store, the CSV and the figures.
 
     ``outputs`` maps ``store``, ``csv``, ``scatter`` and ``cumulative`` to their paths;
     ``compared`` lists the outputs (``lifecycle.rbf.outputs``); ``second_seed_storm`` is
-    ``truth.second_seed_storm``, the second seed's storm stratum.
+    ``truth.second_seed_storm``, the second seed's storm stratum. ``fit`` holds the arguments of
+    :func:`moorlife.stages.lifecycle.refit` (the lifecycle rule's inputs and settings): with it the
+    window's records' term (:func:`window_records`) enters the bias test and the band.
     """
     from moorlife.plots import truth as plots
 
@@ -133,14 +172,22 @@ def run(
     keep = [v for v in lc.data_vars if names.TIME in lc[v].dims and (v in compared or v in names.METOCEAN_VARS)]
     keep += [v for v in ("validation_sum_error",) if v in lc]  # the band's reconstruction term
     lc = lc[keep].load()
+    tr = open_zarr(truth)
+    records = None
+    if fit is not None:
+        from moorlife.stages.lifecycle import refit
+
+        records = window_records(refit(**fit), lc, tr["hindcast_index"].values, source=str(lifecycle))
+        log.info("records' term of the window's sums, per unit CV of one record: %s", records)
     cmp = kernels.compare_window(
-        open_zarr(truth),
+        tr,
         lc,
         open_zarr(discrete_states),
         open_zarr(discrete_sims),
         outputs=list(compared),
         seed2=open_zarr(truth_seed2) if truth_seed2 else None,
         second_seed_storm=second_seed_storm,
+        records=records,
     )
     table = comparison_table(cmp)
     log.info("truth comparison of %s on %d hours:\n%s", mooring_system, cmp.attrs["n_hours"], table.to_string())
