@@ -9,7 +9,9 @@ Each argument is a truth comparison's CSV (the ``truth_compare`` rule's
 (``band_sigma_pct``, ``coverage_needed``) takes ``=LIFECYCLE``, the ``lifecycle.zarr`` of the same
 reconstruction, whose validation states give the band's reconstruction term; the seed term is
 the CSV's measured ``seed_sum_std_pct``. The arithmetic is the comparison's own
-(``moorlife.lifecycle.band_sigma_of``, ``coverage_needed``).
+(``moorlife.lifecycle.band_sigma_of``, ``coverage_needed``). A CSV written since the comparison
+carried the training records' seed scatter (``records_sum_std_pct``, 514a31d) has it in its band;
+an older one, and the ``=LIFECYCLE`` route, leave it out: their coverage needed is an upper bound.
 
 ``--results DIR`` first prints, for every ``DIR/{ms}/lifecycle.zarr``, the band of the life-cycle
 damage (S-N): the seed scatter of the sum per line, the validation term, and the band's sd with
@@ -88,12 +90,17 @@ def main(argv: list[str]) -> int:
         return 2
     df = pd.concat([cases(a) for a in argv], ignore_index=True)
     k_now = float(read_yaml(ROOT / "config" / "config.yaml")["lifecycle"]["uncertainty"]["coverage"])
-    print("| window | curve | line | error % | seed scatter of the sum % | band sd % | coverage needed |")
-    print("|---|---|---|---|---|---|---|")
+    if "records_sum_std_pct" not in df:
+        df["records_sum_std_pct"] = np.nan
+    print(
+        "| window | curve | line | error % | seed scatter of the sum % | records' sd % | band sd % | coverage needed |"
+    )
+    print("|---|---|---|---|---|---|---|---|")
     for _, r in df.iterrows():
         print(
             f"| {r['window']} | {r['curve']} | {r['line']} | {r['reconstruction_error_pct']:+.1f} "
-            f"| {r['seed_sum_std_pct']:.2f} | {r['band_sigma_pct']:.1f} | {r['coverage_needed']:.2f} |"
+            f"| {r['seed_sum_std_pct']:.2f} | {r['records_sum_std_pct']:.2f} | {r['band_sigma_pct']:.1f} "
+            f"| {r['coverage_needed']:.2f} |"
         )
     k = df["coverage_needed"].to_numpy(dtype=float)
     inside = int(np.sum(k <= k_now))
