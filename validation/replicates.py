@@ -27,7 +27,12 @@ the same cost, removes it:
    ``1000:0:0`` is the paper's method; ``960:20:2`` costs the same. ``N:pilotT.M:SEEDS`` gives the
    top ``T`` one pilot replicate and averages ``SEEDS`` into the ``M`` of them with the largest
    damage share x seed CV (:func:`pilot_picks`): ``N + T + M (SEEDS - 1)`` simulations
-   (``960:pilot20.5:5`` costs 1,000).
+   (``960:pilot20.5:5`` costs 1,000). ``lifeT`` and ``yearsT`` rank the ``T`` states by their
+   share of the records' seed variance in the life-cycle sum, or in each calendar year's sum
+   (:func:`carried_mass`, from the carried shares of ``moorlife.lifecycle.records``).
+
+    python validation/replicates.py --results results --system MS6 --top 20 --seeds 2 \
+        --grid 1000:0:0,960:20:2,960:life20:2,960:years20:2
 
 ``--overlay`` sets the simulation settings of the replicates; they must be the study's (the
 year of ``validation/truth.md`` ran from rest with a 600 s transient).
@@ -75,6 +80,45 @@ def damage_mass(cfg: dict[str, Any], cases: xr.Dataset, sims: xr.Dataset, hindca
     out["largest"] = out.max(axis=1)
     out["hours"] = ds["cell_hours"].values
     return out
+
+
+def carried_mass(
+    cfg: dict[str, Any], cases: xr.Dataset, sims: xr.Dataset, hindcast: xr.Dataset, by: str
+) -> pd.DataFrame:
+    """Every training state's share of the records' seed variance of a damage sum, largest first.
+
+    ``G_i / S`` of the S-N damage per line (:func:`moorlife.lifecycle.records.carried_shares`):
+    ``by == "life"`` ranks by ``(G_i / S)^2`` of the life-cycle sum, the state's share of the
+    records' variance in the life band's term; ``by == "years"`` by the sum over the hindcast's
+    calendar years of ``(G_iy / S_y)^2``, each year's sum: the states that carry single years (a
+    storm) rank high even where their share of 31 years is small. Columns as :func:`damage_mass`,
+    each line's column normalised to sum 1.
+    """
+    from moorlife.lifecycle.records import carried_shares
+    from moorlife.stages import thrust_for
+
+    settings = lifecycle.rbf_settings(cfg["lifecycle"]["rbf"])
+    thrust = thrust_for(settings, harness.ROOT / cfg["platform"], cfg["simulation"]["wind"])
+    fitted = lifecycle.fit_reconstruction(cases, sims, settings=settings, thrust=thrust)
+    dmg = [j for j, (v, line) in enumerate(fitted.cols) if v == "damage_sn" and line is not None]
+    t = fitted.train
+    hp = lifecycle._points(hindcast, "time")
+    pred = lifecycle.predict_outputs(fitted.model, hp)
+    if by == "life":
+        groups = [np.arange(hp.shape[0])]
+    elif by == "years":
+        year = hindcast["time"].dt.year.values
+        groups = [np.flatnonzero(year == y) for y in np.unique(year)]
+    else:
+        raise ValueError(f"carried_mass: by must be 'life' or 'years', got {by!r}")
+    var = np.zeros((int(t.sum()), len(dmg)))
+    for g in groups:
+        sh = carried_shares(fitted.model, hp[g], pred[g], fitted.values[t], fitted.points[t], dmg)
+        var += np.nan_to_num(sh) ** 2
+    var /= var.sum(axis=0, keepdims=True)
+    out = pd.DataFrame(var, index=fitted.case[t], columns=[fitted.cols[j][1] for j in dmg])
+    out["largest"] = out.max(axis=1)
+    return out.sort_values("largest", ascending=False, kind="stable")
 
 
 def simulate_replicates(cfg: dict[str, Any], ms: str, results: Path, work: Path, ids: np.ndarray, seeds: int) -> list:
@@ -217,15 +261,30 @@ def cv_estimates(
     return pd.DataFrame(rows).set_index("estimate").to_markdown()
 
 
+#: The rankings of a grid's ``TOP``: a bare count ranks by damage mass (the package's), a
+#: prefix by the records' variance (:func:`carried_mass`).
+RANKINGS = ("life", "years")
+
+
+def ranking(top: str) -> tuple[str, int] | None:
+    """``("", 20)`` for ``20``, ``("life", 20)`` for ``life20``; None for another ``TOP``."""
+    for r in ("", *RANKINGS):
+        rest = top[len(r) :]
+        if top.startswith(r) and rest.isdigit():
+            return r, int(rest)
+    return None
+
+
 def parse_grid(spec: str) -> list[tuple[int, str, int]]:
-    """``N_MDA:TOP:SEEDS,...``; ``TOP`` is a count of states by damage mass, ``caseID`` (one
-    state) or ``pilotT.M`` (:func:`pilot_picks`)."""
+    """``N_MDA:TOP:SEEDS,...``; ``TOP`` is a count of states by damage mass, the same with a
+    ranking by the records' variance (``life20``, ``years20``: :func:`carried_mass`), ``caseID``
+    (one state) or ``pilotT.M`` (:func:`pilot_picks`)."""
     out = []
     for item in spec.split(","):
         n, top, k = item.split(":")
         pilot = top.startswith("pilot") and len(top[5:].split(".")) == 2 and top[5:].replace(".", "").isdigit()
-        if not (top.isdigit() or (top.startswith("case") and top[4:].isdigit()) or pilot):
-            raise ValueError(f"--grid: {item!r}: TOP must be a number, caseID or pilotT.M")
+        if not (ranking(top) or (top.startswith("case") and top[4:].isdigit()) or pilot):
+            raise ValueError(f"--grid: {item!r}: TOP must be a number, lifeN, yearsN, caseID or pilotT.M")
         out.append((int(n), top, int(k)))
     return out
 
@@ -275,14 +334,27 @@ def main(argv: list[str] | None = None) -> int:
     cases, sims = stores["cases"], stores["sims"]
     role = cases["role"].values.astype(object).astype(str)
     grid = parse_grid(a.grid)
-    prefixes = {}
+    prefixes, carried = {}, {}
     for n in sorted({g[0] for g in grid} | {1000, 900}):
         keep = (role == "validate") | ((role == "train") & (np.arange(role.size) < n))
         cs = cases.isel({DIM: keep})
         sm = sims.sel({DIM: cs[DIM].values})
         prefixes[n] = (cs, sm, damage_mass(cfg, cs, sm, stores["hindcast"]))
+    for n, top, _ in grid:  # the records' variance rankings the grid asks for, one per fit
+        r = ranking(top)
+        if r and r[0] and (n, r[0]) not in carried:
+            cs, sm, _ = prefixes[n]
+            carried[(n, r[0])] = carried_mass(cfg, cs, sm, stores["hindcast"], r[0])
     # the top states of every fit the grid makes (each MDA prefix ranks its own): every variant has its replicates
-    ids = np.unique(np.concatenate([m.index.values[: a.top] for _, _, m in prefixes.values()]))
+    ranked = [m for _, _, m in prefixes.values()] + list(carried.values())
+    ids = np.unique(np.concatenate([m.index.values[: a.top] for m in ranked]))
+    for (n, by), m in carried.items():
+        where = {int(c): int(np.flatnonzero(prefixes[n][2].index.values == c)[0]) + 1 for c in m.index.values[: a.top]}
+        print(
+            f"{ms}, {n} states, the top {a.top} by the records' variance ({by}; rank by damage mass): "
+            + ", ".join(f"{c} ({k})" for c, k in where.items()),
+            file=sys.stderr,
+        )
     mass = prefixes[1000][2]
     print(
         f"{ms}: the top {a.top} of 1,000 training states hold {100 * mass['largest'].iloc[: a.top].sum():.1f} % "
@@ -323,7 +395,10 @@ def main(argv: list[str] | None = None) -> int:
             sm = averaged(averaged(sm, reps[:1], rest), reps[:k], chosen)
             name = f"{n} MDA + pilot {t} + {mm} x {k - 1} seeds (cases {', '.join(map(str, chosen))})"
         else:
-            chosen = np.array([int(top[4:])]) if top.startswith("case") else m.index.values[: int(top)]
+            r = ranking(top)
+            if r and r[0]:
+                m = carried[(n, r[0])]
+            chosen = np.array([int(top[4:])]) if top.startswith("case") else m.index.values[: r[1]]
             missing = np.setdiff1d(chosen, reps[0][DIM].values) if k else np.array([], dtype=int)
             if missing.size:
                 raise SystemExit(f"--grid {n}:{top}:{k}: cases {missing.tolist()} have no replicates (raise --top)")
