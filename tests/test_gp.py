@@ -588,6 +588,24 @@ def test_training_weights_carry_a_weighted_sum_of_the_posterior_means(wind):
         gp.training_weights(model, xq, w[:, :1])
 
 
+def test_training_weights_make_one_pass_per_shared_correlation():
+    """Outputs that share their hyperparameters (a line's S-N and T-N) share one pass over the
+    points; each output's weights are those it has alone."""
+    from moorlife.gp.predict import _shared_correlation
+
+    x = _states(80, 36)
+    d = 1e-6 * np.exp(_wind_plus_waves(x))
+    y = np.column_stack([d, 0.5 * d, _smooth(x)])
+    model = gp.fit_gp(x, y, is_direction=MASK, log_output=[True, True, False], groups=[0, 0, 1])
+    assert _shared_correlation(model, np.arange(3)) == [[0, 1], [2]]
+    xq = _states(200, 37)
+    w = np.random.default_rng(38).random((200, 3))
+    g = gp.training_weights(model, xq, w)
+    for j in range(3):
+        alone = gp.training_weights(model, xq, w[:, j], outputs=[j])[:, 0]
+        np.testing.assert_allclose(g[:, j], alone, rtol=0, atol=1e-9 * np.abs(alone).max())  # gemm vs gemv
+
+
 def test_training_weights_refuse_a_linear_prior_mean():
     x = _states(40, 35)
     model = gp.fit_gp(x, _smooth(x), is_direction=MASK, prior_mean="linear")

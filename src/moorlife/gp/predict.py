@@ -288,11 +288,33 @@ def training_weights(
     wr = model.wind_ratio
     rows = max(1, int(chunk_rows))
     out = np.zeros((model.centres.shape[0], outs.size))
-    for c, j in enumerate(outs):
+    for group in _shared_correlation(model, outs):  # one pass over the points per shared correlation
+        j = int(outs[group[0]])
         gc = model.gates(model.centres, [j])[:, 0] if wr[j] > 0 else None
-        acc = np.zeros(model.centres.shape[0])
+        acc = np.zeros((model.centres.shape[0], len(group)))
         for s in range(0, n, rows):
             e = min(n, s + rows)
-            acc += _cross_correlation(model, z[s:e], j, gc)[0].T @ w[s:e, c]
-        out[:, c] = sla.cho_solve((model.chol[j], True), acc, check_finite=False)
+            acc += _cross_correlation(model, z[s:e], j, gc)[0].T @ w[s:e, group]
+        out[:, group] = sla.cho_solve((model.chol[j], True), acc, check_finite=False)
     return out
+
+
+def _shared_correlation(model: GPModel, outs: np.ndarray) -> list[list[int]]:
+    """Positions in ``outs`` grouped by the outputs' correlation: the same length scales, wind term
+    and Cholesky factor (the outputs of one hyperparameter group, e.g. a line's S-N and T-N)."""
+    wr = model.wind_ratio
+    groups: list[list[int]] = []
+    for c, j in enumerate(outs.tolist()):
+        for g in groups:
+            k = int(outs[g[0]])
+            same = np.array_equal(model.length_scale[j], model.length_scale[k]) and wr[j] == wr[k]
+            if same and wr[j] > 0:
+                same = np.array_equal(model.wind_length_scale[j], model.wind_length_scale[k]) and np.array_equal(
+                    model.gates(model.centres, [j]), model.gates(model.centres, [k])
+                )
+            if same and np.array_equal(model.chol[j], model.chol[k]):
+                g.append(c)
+                break
+        else:
+            groups.append([c])
+    return groups
