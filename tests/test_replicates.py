@@ -134,6 +134,49 @@ def test_picks_are_deterministic_and_ignore_the_validation_outputs(picks):
     xr.testing.assert_identical(ds, rep.pick_replicates(hc, cases, noisy, settings=SETTINGS, n=5, seeds=2))
 
 
+def test_ranking_by_the_records_variance_of_the_life_and_of_each_year(picks):
+    """``rank: life`` ranks by (G_i / S)^2 of the life-cycle sum; ``years`` sums it over the
+    calendar years' sums; the default's picks keep their variables and attributes."""
+    from moorlife.lifecycle.records import carried_shares
+
+    hc, cases, sims, ds = picks
+    assert "records_variance_share" not in ds and "replicate_rank" not in ds.attrs
+    life = rep.pick_replicates(hc, cases, sims, settings=SETTINGS, n=5, seeds=2, rank="life")
+    assert life.attrs["replicate_rank"] == "life"
+    model, ids, cols, y = rounds.fit_training(cases, sims, settings=SETTINGS)
+    dmg = [j for j, (v, ln) in enumerate(cols) if v == "damage_sn"]
+    hp = lifecycle._points(hc, "time")
+    g = carried_shares(
+        model, hp, lifecycle.predict_outputs(model, hp), y, lifecycle._points(cases.sel(case=ids), "case"), dmg
+    )
+    share = g**2 / (g**2).sum(axis=0)
+    top = np.argsort(-share.max(axis=1), kind="stable")[:5]
+    np.testing.assert_array_equal(life["case"].values, ids[top])
+    np.testing.assert_allclose(life["records_variance_share"].values, share[top], rtol=1e-12)
+    # the hindcast's 2,000 hours lie in one year: its one sum is the life's
+    years = rep.pick_replicates(hc, cases, sims, settings=SETTINGS, n=5, seeds=2, rank="years")
+    np.testing.assert_array_equal(years["case"].values, life["case"].values)
+    # spread over four years, each year's sum counts
+    hc4 = hc.assign_coords(time=np.datetime64("2000-01-01T00") + np.arange(hc.sizes["time"]) * np.timedelta64(18, "h"))
+    years4 = rep.pick_replicates(hc4, cases, sims, settings=SETTINGS, n=5, seeds=2, rank="years")
+    year = hc4["time"].dt.year.values
+    assert np.unique(year).size == 5
+    by_year = rep.records_variance_shares(
+        model,
+        hp,
+        lifecycle.predict_outputs(model, hp),
+        y,
+        lifecycle._points(cases.sel(case=ids), "case"),
+        dmg,
+        [np.flatnonzero(year == v) for v in np.unique(year)],
+    )
+    top4 = np.argsort(-by_year.max(axis=1), kind="stable")[:5]
+    np.testing.assert_array_equal(years4["case"].values, ids[top4])
+    assert not np.array_equal(years4["case"].values, life["case"].values)  # a year's records rank higher
+    with pytest.raises(ValueError, match=r"lifecycle.replicates.rank = 'storm': must be one of"):
+        rep.pick_replicates(hc, cases, sims, settings=SETTINGS, n=5, seeds=2, rank="storm")
+
+
 def test_budget_refused_at_config_time(tiny_config):
     cfg = tiny_config
     n_tr = cfg["selection"]["n_train"]

@@ -85,40 +85,27 @@ def damage_mass(cfg: dict[str, Any], cases: xr.Dataset, sims: xr.Dataset, hindca
 def carried_mass(
     cfg: dict[str, Any], cases: xr.Dataset, sims: xr.Dataset, hindcast: xr.Dataset, by: str
 ) -> pd.DataFrame:
-    """Every training state's share of the records' seed variance of a damage sum, largest first.
-
-    ``G_i / S`` of the S-N damage per line (:func:`moorlife.lifecycle.records.carried_shares`):
-    ``by == "life"`` ranks by ``(G_i / S)^2`` of the life-cycle sum, the state's share of the
-    records' variance in the life band's term; ``by == "years"`` by the sum over the hindcast's
-    calendar years of ``(G_iy / S_y)^2``, each year's sum: the states that carry single years (a
-    storm) rank high even where their share of 31 years is small. Columns as :func:`damage_mass`,
-    each line's column normalised to sum 1.
-    """
-    from moorlife.lifecycle.records import carried_shares
+    """Every training state's share of the records' seed variance of a damage sum, largest first:
+    the package's ranking ``lifecycle.replicates.rank: life`` or ``years``
+    (:func:`moorlife.selection.replicates.pick_replicates`). Columns as :func:`damage_mass`."""
     from moorlife.stages import thrust_for
 
     settings = lifecycle.rbf_settings(cfg["lifecycle"]["rbf"])
-    thrust = thrust_for(settings, harness.ROOT / cfg["platform"], cfg["simulation"]["wind"])
-    fitted = lifecycle.fit_reconstruction(cases, sims, settings=settings, thrust=thrust)
-    dmg = [j for j, (v, line) in enumerate(fitted.cols) if v == "damage_sn" and line is not None]
-    t = fitted.train
-    hp = lifecycle._points(hindcast, "time")
-    pred = lifecycle.predict_outputs(fitted.model, hp)
-    if by == "life":
-        groups = [np.arange(hp.shape[0])]
-    elif by == "years":
-        year = hindcast["time"].dt.year.values
-        groups = [np.flatnonzero(year == y) for y in np.unique(year)]
-    else:
-        raise ValueError(f"carried_mass: by must be 'life' or 'years', got {by!r}")
-    var = np.zeros((int(t.sum()), len(dmg)))
-    for g in groups:
-        sh = carried_shares(fitted.model, hp[g], pred[g], fitted.values[t], fitted.points[t], dmg)
-        var += np.nan_to_num(sh) ** 2
-    var /= var.sum(axis=0, keepdims=True)
-    out = pd.DataFrame(var, index=fitted.case[t], columns=[fitted.cols[j][1] for j in dmg])
+    n_train = int((cases["role"].values.astype(object).astype(str) == "train").sum())
+    ds = rep.pick_replicates(
+        hindcast,
+        cases,
+        sims,
+        settings=settings,
+        n=n_train,
+        seeds=1,
+        thrust=thrust_for(settings, harness.ROOT / cfg["platform"], cfg["simulation"]["wind"]),
+        rank=by,
+    )
+    out = ds["records_variance_share"].to_pandas()
+    out.index = ds[DIM].values
     out["largest"] = out.max(axis=1)
-    return out.sort_values("largest", ascending=False, kind="stable")
+    return out
 
 
 def simulate_replicates(cfg: dict[str, Any], ms: str, results: Path, work: Path, ids: np.ndarray, seeds: int) -> list:

@@ -1,7 +1,7 @@
 # Stage 'replicates': seed replicates of the training states that hold the damage, per mooring
 # system (lifecycle.replicates.states > 0). After the MDA states and every adaptive round, the
-# fit gives each training state the share of the life-cycle damage of the hours nearest to it;
-# the states of the largest share are simulated again, once per seed, by the simulate stage as
+# fit ranks the training states (lifecycle.replicates.rank: the share of the life-cycle damage of
+# the hours nearest to each, or of the records' seed variance in the sums); the top ones are simulated again, once per seed, by the simulate stage as
 # it is (use rule), under their own case ids and the random streams replicate1 .. replicatek.
 # The lifecycle stage fits the mean of their records.
 
@@ -31,6 +31,7 @@ rule replicate_picks:
         rbf=result_settings(config, "lifecycle")["rbf"],
         states=REPLICATES["states"],
         seeds=REPLICATES["seeds"],
+        rank=REPLICATES["rank"],
     script:
         "../scripts/replicate_picks.py"
 

@@ -43,12 +43,16 @@ __all__ = [
     "REPLICATE_STREAM",
     "replicate_stream",
     "damage_shares",
+    "records_variance_shares",
     "largest_shares",
     "pick_replicates",
     "average_replicates",
 ]
 
 log = logging.getLogger("moorlife.selection")
+
+#: The rankings of ``lifecycle.replicates.rank`` (:func:`pick_replicates`).
+RANKS: tuple[str, ...] = ("damage", "life", "years")
 
 #: Prefix of the replicates' random streams: ``replicate1`` .. (:func:`replicate_stream`).
 REPLICATE_STREAM: str = "replicate"
@@ -91,6 +95,37 @@ def damage_shares(nearest: npt.ArrayLike, damage: npt.ArrayLike, n_train: int) -
     return np.divide(out, total, out=np.zeros_like(out), where=total > 0)
 
 
+def records_variance_shares(
+    model: lifecycle.Reconstruction,
+    points: np.ndarray,
+    predicted: np.ndarray,
+    train_values: np.ndarray,
+    train_points: np.ndarray,
+    outputs: Sequence[int],
+    groups: Sequence[np.ndarray],
+) -> np.ndarray:
+    """Each training state's share of the records' seed variance in a set of damage sums.
+
+    ``sum_g (G_ig / S_g)^2`` over the sums ``g`` (each a group of rows of ``points``: the whole
+    hindcast, or each calendar year), with ``G_ig / S_g`` the share of sum ``g`` that record ``i``
+    carries (:func:`moorlife.lifecycle.records.carried_shares`): with one seed CV for every
+    record, the part of the sums' seed variance that averaging record ``i`` would remove.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n_train, len(outputs))
+        Column sums 1 (a column of no damage: all zero).
+    """
+    from moorlife.lifecycle.records import carried_shares
+
+    var = np.zeros((np.asarray(train_values).shape[0], len(outputs)))
+    for g in groups:
+        sh = carried_shares(model, points[g], predicted[g], train_values, train_points, outputs)
+        var += np.nan_to_num(sh) ** 2
+    total = var.sum(axis=0)
+    return np.divide(var, total, out=np.zeros_like(var), where=total > 0)
+
+
 def largest_shares(shares: npt.ArrayLike, n: int) -> np.ndarray:
     """Indices of the ``n`` rows of the largest share over the columns, largest first.
 
@@ -112,6 +147,7 @@ def pick_replicates(
     n: int,
     seeds: int,
     thrust: lifecycle.ThrustCurve | None = None,
+    rank: str = "damage",
 ) -> xr.Dataset:
     """The ``n`` training states to simulate again, as a cases-like store.
 
@@ -126,27 +162,46 @@ def pick_replicates(
         ``lifecycle.rbf``.
     n, seeds : int
         ``lifecycle.replicates.states`` and ``seeds`` (recorded in the attributes).
+    rank : {"damage", "life", "years"}
+        ``lifecycle.replicates.rank``: the states of the largest share of a line's life-cycle
+        damage in their cells (:func:`damage_shares`), or of the records' seed variance in the
+        life-cycle sum or in the calendar years' sums (:func:`records_variance_shares`).
 
     Returns
     -------
     xarray.Dataset
         Dim ``case``: the picked states' rows of ``cases`` (their own case ids), in pick order,
         with ``damage_share (case, line)`` (the S-N damage), ``cell_hours`` (the hindcast hours
-        whose nearest training state it is) and ``pick_order``; attributes
-        ``replicate_seeds``, ``n_fit`` and the selection's normalisation.
+        whose nearest training state it is), ``records_variance_share (case, line)`` (with
+        ``rank`` ``life`` or ``years``) and ``pick_order``; attributes ``replicate_seeds``,
+        ``n_fit``, the selection's normalisation and, with ``rank`` not ``damage``, ``replicate_rank``.
     """
     dim = names.CASE
-    model, train_ids, cols, _ = fit_training(cases, sims, settings=settings, thrust=thrust, context="replicates")
+    if rank not in RANKS:
+        raise ValueError(f"lifecycle.replicates.rank = {rank!r}: must be one of {list(RANKS)}")
+    model, train_ids, cols, y = fit_training(cases, sims, settings=settings, thrust=thrust, context="replicates")
     dmg = [j for j, (v, line) in enumerate(cols) if v == "damage_sn" and line is not None]
     if not dmg:
         raise ValueError("lifecycle.replicates: the reconstruction has no damage_sn output (lifecycle.rbf.outputs)")
     hp = hindcast_points(hindcast, source="hindcast")
-    damage = lifecycle.predict_outputs(model, hp, chunk_rows=settings.chunk_rows)[:, dmg]
+    pred = lifecycle.predict_outputs(model, hp, chunk_rows=settings.chunk_rows)
     _, nearest = rbf.nearest_centre(model, hp)
-    shares = damage_shares(nearest, np.maximum(damage, 0.0), train_ids.size)
-    order = largest_shares(shares, n)
+    shares = damage_shares(nearest, np.maximum(pred[:, dmg], 0.0), train_ids.size)
+    ranked = shares
+    if rank != "damage":
+        if rank == "life":
+            groups = [np.arange(hp.shape[0])]
+        else:
+            year = hindcast[names.TIME].dt.year.values
+            groups = [np.flatnonzero(year == v) for v in np.unique(year)]
+        x_train = lifecycle._points(cases.sel({dim: train_ids}), dim)
+        ranked = records_variance_shares(model, hp, pred, y, x_train, dmg, groups)
+    order = largest_shares(ranked, n)
     ids = train_ids[order]
     out = cases.sel({dim: ids})
+    if rank != "damage":
+        text = f"share of the records' seed variance in the line's {rank} S-N damage sum(s)"
+        out["records_variance_share"] = ((dim, names.LINE), ranked[order], {"units": "1", "long_name": text})
     out = out.assign(
         damage_share=(
             (dim, names.LINE),
@@ -168,11 +223,21 @@ def pick_replicates(
             "n_fit": int(train_ids.size),
         }
     )
+    if rank != "damage":  # the default's picks keep their attributes
+        out.attrs["replicate_rank"] = rank
+        out.attrs["selection_method"] = (
+            f"seed replicates: the training states of the largest share of the records' seed variance in the "
+            f"{'life-cycle damage sum' if rank == 'life' else 'damage sum of each calendar year'} "
+            "(moorlife.selection.replicates)"
+        )
     log.info(
-        "replicates: %d of %d training states hold %.1f %% of the damage (largest line share summed); cases %s",
+        "replicates (rank %s): %d of %d training states hold %.1f %% of the damage and %.1f %% of its "
+        "ranking (largest line share summed); cases %s",
+        rank,
         ids.size,
         train_ids.size,
         100 * float(np.max(shares[order], axis=1).sum()),
+        100 * float(np.max(ranked[order], axis=1).sum()),
         ids.tolist(),
     )
     return out

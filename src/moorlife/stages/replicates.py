@@ -36,6 +36,7 @@ def run(
     rbf: Mapping[str, Any],
     states: int,
     seeds: int,
+    rank: str = "damage",
     rounds: Sequence[PathLike] = (),
     round_simulations: Sequence[PathLike] = (),
     platform_cfg: PathLike | None = None,
@@ -54,6 +55,8 @@ def run(
         ``lifecycle.rbf`` (the fit, as the ``lifecycle`` stage fits).
     states, seeds : int
         ``lifecycle.replicates.states`` and ``seeds``.
+    rank : str
+        ``lifecycle.replicates.rank`` (:func:`moorlife.selection.replicates.pick_replicates`).
     rounds, round_simulations : sequence of path-like
         The picks and simulations of every adaptive round.
     platform_cfg : path-like, optional
@@ -74,6 +77,7 @@ def run(
             n=int(states),
             seeds=int(seeds),
             thrust=thrust_for(settings, platform_cfg, wind),
+            rank=str(rank),
         )
         logger.info(
             "replicated cases %s (hindcast hours %s)", ds["case"].values.tolist(), ds["hindcast_index"].values.tolist()
