@@ -29,7 +29,7 @@ the same cost, removes it:
    damage share x seed CV (:func:`pilot_picks`): ``N + T + M (SEEDS - 1)`` simulations
    (``960:pilot20.5:5`` costs 1,000). ``lifeT`` and ``yearsT`` rank the ``T`` states by their
    share of the records' seed variance in the life-cycle sum, or in each calendar year's sum
-   (:func:`carried_mass`, from the carried shares of ``moorlife.lifecycle.records``).
+   (:func:`damage_mass`, from the carried shares of ``moorlife.lifecycle.records``).
 
     python validation/replicates.py --results results --system MS6 --top 20 --seeds 2 \
         --grid 1000:0:0,960:20:2,960:life20:2,960:years20:2
@@ -59,35 +59,13 @@ from moorlife.selection import replicates as rep  # noqa: E402
 DIM = "case"
 
 
-def damage_mass(cfg: dict[str, Any], cases: xr.Dataset, sims: xr.Dataset, hindcast: xr.Dataset) -> pd.DataFrame:
-    """Every training state's share of each line's life-cycle damage, largest first: the ranking
-    of ``lifecycle.replicates`` (:func:`moorlife.selection.replicates.pick_replicates`)."""
-    from moorlife.stages import thrust_for
-
-    settings = lifecycle.rbf_settings(cfg["lifecycle"]["rbf"])
-    n_train = int((cases["role"].values.astype(object).astype(str) == "train").sum())
-    ds = rep.pick_replicates(
-        hindcast,
-        cases,
-        sims,
-        settings=settings,
-        n=n_train,
-        seeds=1,
-        thrust=thrust_for(settings, harness.ROOT / cfg["platform"], cfg["simulation"]["wind"]),
-    )
-    out = ds["damage_share"].to_pandas()
-    out.index = ds[DIM].values
-    out["largest"] = out.max(axis=1)
-    out["hours"] = ds["cell_hours"].values
-    return out
-
-
-def carried_mass(
-    cfg: dict[str, Any], cases: xr.Dataset, sims: xr.Dataset, hindcast: xr.Dataset, by: str
+def damage_mass(
+    cfg: dict[str, Any], cases: xr.Dataset, sims: xr.Dataset, hindcast: xr.Dataset, rank: str = "damage"
 ) -> pd.DataFrame:
-    """Every training state's share of the records' seed variance of a damage sum, largest first:
-    the package's ranking ``lifecycle.replicates.rank: life`` or ``years``
-    (:func:`moorlife.selection.replicates.pick_replicates`). Columns as :func:`damage_mass`."""
+    """Every training state's share, largest first, by the package's ranking
+    ``lifecycle.replicates.rank`` (:func:`moorlife.selection.replicates.pick_replicates`): of each
+    line's life-cycle damage in its cell (``damage``, with the cell's ``hours``), or of the records'
+    seed variance in the life-cycle sum or the years' sums (``life``, ``years``)."""
     from moorlife.stages import thrust_for
 
     settings = lifecycle.rbf_settings(cfg["lifecycle"]["rbf"])
@@ -100,11 +78,13 @@ def carried_mass(
         n=n_train,
         seeds=1,
         thrust=thrust_for(settings, harness.ROOT / cfg["platform"], cfg["simulation"]["wind"]),
-        rank=by,
+        rank=rank,
     )
-    out = ds["records_variance_share"].to_pandas()
+    out = ds["damage_share" if rank == "damage" else "records_variance_share"].to_pandas()
     out.index = ds[DIM].values
     out["largest"] = out.max(axis=1)
+    if rank == "damage":
+        out["hours"] = ds["cell_hours"].values
     return out
 
 
@@ -249,7 +229,7 @@ def cv_estimates(
 
 
 #: The rankings of a grid's ``TOP``: a bare count ranks by damage mass (the package's), a
-#: prefix by the records' variance (:func:`carried_mass`).
+#: prefix by the records' variance (:func:`damage_mass`).
 RANKINGS = ("life", "years")
 
 
@@ -264,7 +244,7 @@ def ranking(top: str) -> tuple[str, int] | None:
 
 def parse_grid(spec: str) -> list[tuple[int, str, int]]:
     """``N_MDA:TOP:SEEDS,...``; ``TOP`` is a count of states by damage mass, the same with a
-    ranking by the records' variance (``life20``, ``years20``: :func:`carried_mass`), ``caseID``
+    ranking by the records' variance (``life20``, ``years20``: :func:`damage_mass`), ``caseID``
     (one state) or ``pilotT.M`` (:func:`pilot_picks`)."""
     out = []
     for item in spec.split(","):
@@ -331,7 +311,7 @@ def main(argv: list[str] | None = None) -> int:
         r = ranking(top)
         if r and r[0] and (n, r[0]) not in carried:
             cs, sm, _ = prefixes[n]
-            carried[(n, r[0])] = carried_mass(cfg, cs, sm, stores["hindcast"], r[0])
+            carried[(n, r[0])] = damage_mass(cfg, cs, sm, stores["hindcast"], r[0])
     # the top states of every fit the grid makes (each MDA prefix ranks its own): every variant has its replicates
     ranked = [m for _, _, m in prefixes.values()] + list(carried.values())
     ids = np.unique(np.concatenate([m.index.values[: a.top] for m in ranked]))
