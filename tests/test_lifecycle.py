@@ -371,15 +371,15 @@ def test_stores_comparison_and_sensitivity_end_to_end(tmp_path):
         ms="MS1",
     )
     lcs = [tmp_path / f"{ms}_lc.zarr" for ms in systems]
-    table = st_compare.run(
+    stores = dict(
         lifecycles=lcs,
         discretes=[tmp_path / f"{ms}_disc.zarr" for ms in systems],
         bins=tmp_path / "bins.zarr",
         mooring_systems=tmp_path / "ms.tsv",
-        summary=tmp_path / "summary.csv",
-        recommendation=tmp_path / "rec.yaml",
         systems=systems,
-        lifecycle=cfg,
+    )
+    table = st_compare.run(
+        **stores, summary=tmp_path / "summary.csv", recommendation=tmp_path / "rec.yaml", lifecycle=cfg
     )
     csv = pd.read_csv(tmp_path / "summary.csv")
     assert len(csv) == len(table) == 12
@@ -420,13 +420,9 @@ def test_stores_comparison_and_sensitivity_end_to_end(tmp_path):
     write_zarr(seeds, tmp_path / "seeds.zarr")
     # the summary's band takes the seed scatter of the life-cycle sum, from the hourly damage
     banded = st_compare.run(
-        lifecycles=lcs,
-        discretes=[tmp_path / f"{ms}_disc.zarr" for ms in systems],
-        bins=tmp_path / "bins.zarr",
-        mooring_systems=tmp_path / "ms.tsv",
+        **stores,
         summary=tmp_path / "summary_band.csv",
         recommendation=tmp_path / "rec_band.yaml",
-        systems=systems,
         lifecycle={**cfg, "uncertainty": {"coverage": 1.0}},
         seeds=tmp_path / "seeds.zarr",
     )
