@@ -133,7 +133,7 @@ def window_records(fitted: lc_mod.Fitted, lc: xr.Dataset, hours: np.ndarray, *, 
     stored = pred.copy()
     for j, (var, line) in enumerate(fitted.cols):
         if var in lc_mod.DAMAGE_VARS.values() and var in sub:
-            stored[:, j] = sub[var].sel({names.LINE: line}).values if line is not None else sub[var].values
+            stored[:, j] = sub[var].sel({names.LINE: line}).values  # a damage output is per line
             bad = ~np.isclose(pred[:, j], stored[:, j], rtol=1e-9, atol=0.0)
             if bad.any():
                 h = int(np.flatnonzero(bad)[0])
