@@ -143,7 +143,8 @@ def test_ranking_by_the_records_variance_of_the_life_and_of_each_year(picks):
     assert "records_variance_share" not in ds and "replicate_rank" not in ds.attrs
     life = rep.pick_replicates(hc, cases, sims, settings=SETTINGS, n=5, seeds=2, rank="life")
     assert life.attrs["replicate_rank"] == "life"
-    model, ids, cols, y = rounds.fit_training(cases, sims, settings=SETTINGS)
+    fitted = lifecycle.fit_reconstruction(cases, sims, settings=SETTINGS)
+    model, ids, cols, y = fitted.model, fitted.train_case, fitted.cols, fitted.train_values
     dmg = [j for j, (v, ln) in enumerate(cols) if v == "damage_sn"]
     hp = lifecycle._points(hc, "time")
     g = carried_shares(

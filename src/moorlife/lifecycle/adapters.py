@@ -57,6 +57,9 @@ __all__ = [
 
 log = logging.getLogger("moorlife.lifecycle")
 
+#: Fewest training states of a fit (:func:`fit_reconstruction`).
+MIN_TRAIN: int = 8
+
 
 def _points(ds: xr.Dataset, dim: str) -> np.ndarray:
     missing = [v for v in names.METOCEAN_VARS if v not in ds]
@@ -259,15 +262,37 @@ class Fitted:
     lo: np.ndarray | None
     span: np.ndarray | None
 
+    @property
+    def train_case(self) -> np.ndarray:
+        """The case ids fitted, in the order of the model's centres."""
+        return self.case[self.train]
+
+    @property
+    def train_points(self) -> np.ndarray:
+        """The training states (physical units), in the order of the model's centres."""
+        return self.points[self.train]
+
+    @property
+    def train_values(self) -> np.ndarray:
+        """The simulated values fitted, one column per output of ``cols``."""
+        return self.values[self.train]
+
 
 def fit_reconstruction(
-    cases: xr.Dataset, sims: xr.Dataset, *, settings: RBFSettings, thrust: ThrustCoordinate | None = None
+    cases: xr.Dataset,
+    sims: xr.Dataset,
+    *,
+    settings: RBFSettings,
+    thrust: ThrustCoordinate | None = None,
+    context: str = "lifecycle",
 ) -> Fitted:
     """The reconstruction of every output, fitted on the simulated training states.
 
-    The fit of :func:`reconstruct_lifecycle`, also what the truth stage refits to take a window's
-    records' term (:func:`moorlife.lifecycle.records.carried_shares`). Deterministic: the same
-    stores and settings give the same model, bit for bit.
+    The fit of :func:`reconstruct_lifecycle`, of the adaptive rounds' and the replicates' picks
+    (:mod:`moorlife.selection`), and what the truth stage refits to take a window's records' term
+    (:func:`moorlife.lifecycle.records.carried_shares`). Only the cases of both stores are
+    taken; those with ``role == "train"`` are fitted, with the selection's normalisation from
+    ``cases``. Deterministic: the same stores and settings give the same model, bit for bit.
 
     Parameters
     ----------
@@ -276,6 +301,14 @@ def fit_reconstruction(
         averaged per case).
     settings : RBFSettings
     thrust : ThrustCurve, optional
+    context : str
+        The caller, named in the errors.
+
+    Raises
+    ------
+    ValueError
+        If fewer than 8 training cases are simulated, or a simulated output (of a training or a
+        validation case) is not finite.
     """
     dim = names.CASE
     common = np.intersect1d(cases[dim].values, sims[dim].values)
@@ -283,8 +316,10 @@ def fit_reconstruction(
     sims = sims.sel({dim: common})
     role = np.array([str(v) for v in cases["role"].values])
     train, valid = role == "train", role == "validate"
-    if train.sum() < 8:
-        raise ValueError(f"only {int(train.sum())} training cases are simulated; the RBF needs at least 8")
+    if train.sum() < MIN_TRAIN:
+        raise ValueError(
+            f"{context}: only {int(train.sum())} training cases are simulated; the RBF needs at least {MIN_TRAIN}"
+        )
     cols = output_columns(sims, dim, settings.outputs)
     y = stack_outputs(sims, dim, cols)
     bad = ~np.isfinite(y)
@@ -312,9 +347,8 @@ def records_term(fitted: Fitted, points: np.ndarray, predicted: np.ndarray, chun
         log.warning("the GP's linear prior mean has no records' term: the life band leaves it out")
         return out
     if dmg:
-        t = fitted.train
         g = carried_shares(
-            fitted.model, points, predicted, fitted.values[t], fitted.points[t], dmg, chunk_rows=chunk_rows
+            fitted.model, points, predicted, fitted.train_values, fitted.train_points, dmg, chunk_rows=chunk_rows
         )
         out[dmg] = records_sum_cv(g, fitted.records)
     return out

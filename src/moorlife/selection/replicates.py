@@ -37,7 +37,6 @@ import xarray as xr
 
 from moorlife import lifecycle, names, rbf
 from moorlife.selection.adapters import hindcast_points
-from moorlife.selection.rounds import fit_training
 
 __all__ = [
     "REPLICATE_STREAM",
@@ -179,7 +178,8 @@ def pick_replicates(
     dim = names.CASE
     if rank not in RANKS:
         raise ValueError(f"lifecycle.replicates.rank = {rank!r}: must be one of {list(RANKS)}")
-    model, train_ids, cols, y = fit_training(cases, sims, settings=settings, thrust=thrust, context="replicates")
+    fitted = lifecycle.fit_reconstruction(cases, sims, settings=settings, thrust=thrust, context="replicates")
+    model, cols, train_ids = fitted.model, fitted.cols, fitted.train_case
     dmg = [j for j, (v, line) in enumerate(cols) if v == "damage_sn" and line is not None]
     if not dmg:
         raise ValueError("lifecycle.replicates: the reconstruction has no damage_sn output (lifecycle.rbf.outputs)")
@@ -194,8 +194,7 @@ def pick_replicates(
         else:
             year = hindcast[names.TIME].dt.year.values
             groups = [np.flatnonzero(year == v) for v in np.unique(year)]
-        x_train = lifecycle._points(cases.sel({dim: train_ids}), dim)
-        ranked = records_variance_shares(model, hp, pred, y, x_train, dmg, groups)
+        ranked = records_variance_shares(model, hp, pred, fitted.train_values, fitted.train_points, dmg, groups)
     order = largest_shares(ranked, n)
     ids = train_ids[order]
     out = cases.sel({dim: ids})

@@ -41,7 +41,6 @@ __all__ = [
     "mda_budget",
     "round_case_ids",
     "pick_hours",
-    "fit_training",
     "with_rounds",
     "pick_round",
     "annotate_lifecycle",
@@ -55,8 +54,6 @@ log = logging.getLogger("moorlife.selection")
 ROUND_CASE_OFFSET: int = 1_000_000_000
 #: The random stream of the picks' simulations (:func:`moorlife.conventions.case_seed_sequence`).
 ROUND_STREAM: str = "adaptive"
-#: Fewest training states of a fit (as :func:`moorlife.lifecycle.reconstruct_lifecycle`).
-MIN_TRAIN: int = 8
 
 
 def mda_budget(n_train: int, rounds: int, per_round: int) -> int:
@@ -175,58 +172,6 @@ def with_rounds(base: xr.Dataset, rounds: Sequence[xr.Dataset]) -> xr.Dataset:
     return ds
 
 
-def fit_training(
-    cases: xr.Dataset,
-    sims: xr.Dataset,
-    *,
-    settings: lifecycle.RBFSettings,
-    thrust: lifecycle.ThrustCurve | None = None,
-    min_train: int = 0,
-    context: str = "fit",
-) -> tuple[lifecycle.Reconstruction, np.ndarray, list[tuple[str, str | None]], np.ndarray]:
-    """The reconstruction of the training states simulated so far (the fit of a round's or the
-    replicates' picks, as the ``lifecycle`` stage fits).
-
-    Only the cases of both stores with ``role == "train"`` are fitted; the selection's
-    normalisation comes from ``cases``.
-
-    Returns
-    -------
-    model : moorlife.lifecycle.Reconstruction
-    train_ids : numpy.ndarray
-        The case ids fitted, in the order of the model's centres.
-    cols : list of (variable, line)
-        The output columns (:func:`moorlife.lifecycle.output_columns`).
-    y : numpy.ndarray, shape (len(train_ids), len(cols))
-        Their simulated values.
-
-    Raises
-    ------
-    ValueError
-        If fewer than ``min_train`` training cases are simulated (``context`` names the caller),
-        or an output is not finite.
-    """
-    dim = names.CASE
-    common = np.intersect1d(cases[dim].values, sims[dim].values)
-    cs, sm = cases.sel({dim: common}), sims.sel({dim: common})
-    train = np.array([str(v) for v in cs["role"].values]) == "train"
-    if train.sum() < min_train:
-        raise ValueError(
-            f"{context}: only {int(train.sum())} training cases are simulated; the RBF needs at least {min_train}"
-        )
-    cols = lifecycle.output_columns(sm, dim, settings.outputs)
-    y = lifecycle.stack_outputs(sm, dim, cols)[train]
-    if not np.isfinite(y).all():
-        i, j = np.argwhere(~np.isfinite(y))[0]
-        raise ValueError(
-            f"simulations: {lifecycle._label(cols[j])} is not finite for case {int(common[train][i])} ({y[i, j]!r})"
-        )
-    x = lifecycle._points(cs, dim)[train]
-    lo, span = lifecycle._selection_scaling(cases)
-    model = lifecycle.fit_outputs(x, y, cols, settings, lo=lo, span=span, thrust=thrust)
-    return model, common[train], cols, y
-
-
 def pick_round(
     hindcast: xr.Dataset,
     cases: xr.Dataset,
@@ -262,9 +207,10 @@ def pick_round(
         ``error_indicator`` and ``nearest_train_distance`` before the round; the selection's
         normalisation attributes and ``round``, ``n_fit``.
     """
-    model, train_ids, cols, y = fit_training(
-        cases, sims, settings=settings, thrust=thrust, min_train=MIN_TRAIN, context=f"adaptive round {number}"
+    fitted = lifecycle.fit_reconstruction(
+        cases, sims, settings=settings, thrust=thrust, context=f"adaptive round {number}"
     )
+    model, cols, y, train_ids = fitted.model, fitted.cols, fitted.train_values, fitted.train_case
     scale = np.std(y, axis=0)
     loo = lifecycle.loo_errors_in_units(model, y, cols)
 
