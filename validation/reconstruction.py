@@ -205,7 +205,9 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
     cases, sims = stores["cases"], stores["sims"]
     if cfg["lifecycle"]["adaptive"]["rounds"]:
         cases, sims = adaptive_training(cfg, ms, results, work, cases, sims, stores["hindcast"])
+    thrust = thrust_for(settings, ROOT / cfg["platform"], cfg["simulation"]["wind"])
     t0 = time.process_time()
+    fitted = lifecycle.fit_reconstruction(cases, sims, settings=settings, thrust=thrust)
     lc = lifecycle.reconstruct_lifecycle(
         stores["hindcast"],
         cases,
@@ -213,15 +215,14 @@ def measure(cfg: dict[str, Any], ms: str, results: Path, work: Path, stores: dic
         settings=settings,
         fatigue_cfg=cfg["fatigue"],
         compare_transforms=False,
-        thrust=thrust_for(settings, ROOT / cfg["platform"], cfg["simulation"]["wind"]),
+        thrust=thrust,
+        fitted=fitted,
     )
     cpu = time.process_time() - t0
     records = None
-    if stores.get("truth") is not None and stores.get("seed2") is not None:  # the records' term: refit, not timed
+    if stores.get("truth") is not None and stores.get("seed2") is not None:  # the window's records' term
         from moorlife.stages.truth import window_records
 
-        thrust = thrust_for(settings, ROOT / cfg["platform"], cfg["simulation"]["wind"])
-        fitted = lifecycle.fit_reconstruction(cases, sims, settings=settings, thrust=thrust)
         records = window_records(fitted, lc, stores["truth"]["hindcast_index"].values, source=f"{ms} ({work})")
     out: dict[str, Any] = {"cpu": cpu, "n_train": int(lc.attrs["n_train"])}
     out["validation_r"] = pd.Series(lc["validation_r"].values, index=lc["output"].values.astype(object).astype(str))

@@ -364,6 +364,7 @@ def reconstruct_lifecycle(
     n_suggest: int = 50,
     compare_transforms: bool = True,
     thrust: ThrustCoordinate | None = None,
+    fitted: Fitted | None = None,
 ) -> xr.Dataset:
     """Rebuild every output for every hindcast hour, with validation and life damage.
 
@@ -387,6 +388,10 @@ def reconstruct_lifecycle(
     thrust : ThrustCurve, optional
         The turbine's thrust curve (:func:`moorlife.lifecycle.spaces.thrust_curve`), required
         when ``settings.choose`` is ``per_output`` with the ``thrust`` space among the candidates.
+    fitted : Fitted, optional
+        :func:`fit_reconstruction` of these ``cases``, ``sims``, ``settings`` and ``thrust``,
+        when the caller has it (a harness that also takes a window's records' term); by default
+        the fit is made here.
 
     Returns
     -------
@@ -397,7 +402,8 @@ def reconstruct_lifecycle(
         the life-cycle damage, yearly and design-life damage, fatigue life, DFF and verdict;
         the adaptive-selection suggestions.
     """
-    fitted = fit_reconstruction(cases, sims, settings=settings, thrust=thrust)
+    if fitted is None:
+        fitted = fit_reconstruction(cases, sims, settings=settings, thrust=thrust)
     model, cols, x, y, common = fitted.model, fitted.cols, fitted.points, fitted.values, fitted.case
     train, valid, lo, span = fitted.train, fitted.valid, fitted.lo, fitted.span
     labels = [_label(c) for c in cols]
