@@ -103,6 +103,12 @@ def test_lifecycle_store_carries_the_records_term_and_the_band_takes_it():
     hp = lifecycle._points(hc, "time")
     expect = lifecycle.records_term(fitted, hp, lifecycle.predict_outputs(fitted.model, hp))
     np.testing.assert_array_equal(rc.values, expect)
+    # the fit given (a harness's, which also takes a window's term) gives the same store
+    again = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=2, fitted=fitted)
+    xr.testing.assert_identical(again, lc)
+    other = lifecycle.fit_reconstruction(cases, sims.isel(case=slice(1, None)), settings=settings)
+    with pytest.raises(ValueError, match=r"the fit given holds cases 69 \(\[1, 2, 3\] \.\.\.\), the stores 70"):
+        lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, fitted=other)
     # 60 records for 1,500 hours: the records' term is far above the independent hours'
     cv = 0.15
     labels = [f"damage_sn/{ln}" for ln in LINES]

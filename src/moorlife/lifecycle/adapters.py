@@ -391,7 +391,7 @@ def reconstruct_lifecycle(
     fitted : Fitted, optional
         :func:`fit_reconstruction` of these ``cases``, ``sims``, ``settings`` and ``thrust``,
         when the caller has it (a harness that also takes a window's records' term); by default
-        the fit is made here.
+        the fit is made here. Refused if it holds other cases than the stores.
 
     Returns
     -------
@@ -404,6 +404,13 @@ def reconstruct_lifecycle(
     """
     if fitted is None:
         fitted = fit_reconstruction(cases, sims, settings=settings, thrust=thrust)
+    else:
+        common = np.intersect1d(cases[names.CASE].values, sims[names.CASE].values)
+        if not np.array_equal(fitted.case, common):
+            raise ValueError(
+                f"reconstruct_lifecycle: the fit given holds cases {fitted.case.size} "
+                f"({fitted.case[:3].tolist()} ...), the stores {common.size} ({common[:3].tolist()} ...)"
+            )
     model, cols, x, y, common = fitted.model, fitted.cols, fitted.points, fitted.values, fitted.case
     train, valid, lo, span = fitted.train, fitted.valid, fitted.lo, fitted.span
     labels = [_label(c) for c in cols]
