@@ -611,21 +611,3 @@ def test_training_weights_refuse_a_linear_prior_mean():
     model = gp.fit_gp(x, _smooth(x), is_direction=MASK, prior_mean="linear")
     with pytest.raises(ValueError, match="linear prior mean"):
         gp.training_weights(model, x, np.ones(40))
-
-
-def test_first_subsample_is_the_first_rows_and_stays_when_states_are_added():
-    """subsample_draw "first": the hyperparameters are those of a fit on the first rows alone, and
-    more states after them leave them unchanged, where a random draw changes them."""
-    x = _states(150, 33)
-    y = _smooth(x) + np.random.default_rng(34).normal(0, 0.02, 150)
-    kw = dict(is_direction=MASK, covariance="matern52", lo=[0, 0, 0.3, 4, 0], span=[25, 180, 5.7, 14, 180])
-    first = gp.fit_gp(x[:120], y[:120], subsample=40, subsample_draw="first", **kw)
-    alone = gp.fit_gp(x[:40], y[:40], subsample=0, **kw)
-    more = gp.fit_gp(x, y, subsample=40, subsample_draw="first", **kw)
-    for f in ("length_scale", "signal_var", "noise_var"):
-        np.testing.assert_array_equal(getattr(first, f), getattr(alone, f), err_msg=f)
-        np.testing.assert_array_equal(getattr(more, f), getattr(first, f), err_msg=f)
-    drawn = [gp.fit_gp(x[:n], y[:n], subsample=40, **kw).length_scale for n in (120, 150)]
-    assert not np.array_equal(*drawn)
-    with pytest.raises(ValueError, match="subsample_draw 'mda'"):
-        gp.fit_gp(x, y, subsample=40, subsample_draw="mda", **kw)

@@ -742,18 +742,17 @@ GP = {"method": "gp", "outputs": list(lifecycle.DEFAULT_OUTPUTS), "gp": {"subsam
 
 
 @pytest.mark.parametrize(
-    ("share", "mean", "indicator", "covariance", "wind", "draw"),
+    ("share", "mean", "indicator", "covariance", "wind"),
     [
-        ("none", "constant", "sd", "gaussian", "none", "random"),
-        ("variable", "constant", "sd", "matern52", "none", "first"),
-        ("all", "linear", "loo", "matern32", "none", "random"),
-        ("variable", "constant", "sd", "matern52", "damage", "random"),
+        ("none", "constant", "sd", "gaussian", "none"),
+        ("variable", "constant", "sd", "matern52", "none"),
+        ("all", "linear", "loo", "matern32", "none"),
+        ("variable", "constant", "sd", "matern52", "damage"),
     ],
 )
-def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator, covariance, wind, draw):
+def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator, covariance, wind):
     """method: gp: perturbing the validation outputs changes the validation metrics and nothing else
-    (``wind``: ``gp.wind_term``, the damage with an additive term of the wind; ``draw``:
-    ``gp.subsample_draw``)."""
+    (``wind``: ``gp.wind_term``, the damage with an additive term of the wind)."""
     curve = _thrust_curve()
     hc = _hindcast(1500, seed=30)
     cases = _cases(hc, 90, 25, seed=31)
@@ -762,10 +761,8 @@ def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator,
     sims["damage_sn"] = (("case", "line"), np.outer(y[:, 0], [1.0, 0.5, 2.0]))
     sims["heave_mpm"] = ("case", y[:, 1])
     gp_cfg = {"subsample": 40, "thrust": True, "indicator": indicator, "share": share, "mean": mean}
-    gp_cfg |= {"covariance": covariance, "wind_term": wind, "subsample_draw": draw}
-    settings = lifecycle.RBFSettings.from_config({**GP, "gp": gp_cfg})
+    settings = lifecycle.RBFSettings.from_config({**GP, "gp": {**gp_cfg, "covariance": covariance, "wind_term": wind}})
     a = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=5, thrust=curve)
-    assert a.attrs.get("gp_subsample_draw", "random") == draw  # a random draw's stores as they were
     if wind == "none":
         assert "gp_wind_sd" not in a and "gp_wind_term" not in a.attrs
     else:  # the damage has the wind term, seeing the wind speed and direction only; the rest has none

@@ -39,8 +39,6 @@ GP_RETRANSFORMS: tuple[str, ...] = ("none", "noise", "predictive")
 #: How the outputs with the additive term start their hyperparameter fit (``fit_gp``'s
 #: ``additive_start``).
 GP_ADDITIVE_STARTS: tuple[str, ...] = ("joint", "warm", "frozen")
-#: How the hyperparameter fit's subsample is drawn (``fit_gp``'s ``subsample_draw``).
-GP_SUBSAMPLE_DRAWS: tuple[str, ...] = ("random", "first")
 
 _LN10_SQ = float(np.log(10.0) ** 2)
 
@@ -231,7 +229,6 @@ def fit_gp(
     restarts: int = 0,
     seed: int = 0,
     subsample: int = 0,
-    subsample_draw: str = "random",
     retransform: str = "noise",
     groups: npt.ArrayLike | None = None,
     prior_mean: str = "constant",
@@ -281,11 +278,6 @@ def fit_gp(
         The subsample and the restarts (``random_state``).
     subsample : int
         Training states of the hyperparameter fit (0: all).
-    subsample_draw : {"random", "first"}
-        ``random``: drawn with ``seed``. ``first``: the first ``subsample`` rows of ``points``;
-        with the training states in the selection's order, its first MDA picks, themselves a
-        maximum-dissimilarity subset (the algorithm is greedy), which adding states (rounds,
-        replicates) leaves unchanged where a random draw changes every state.
     retransform : {"none", "noise", "predictive"}
         Back-transform of the ``log10`` outputs (:mod:`moorlife.gp`).
     groups : array_like of int, shape (n_out,), optional
@@ -356,8 +348,6 @@ def fit_gp(
     if prior_mean == "linear" and retransform == "predictive":
         raise ValueError("GP prior mean 'linear' has no latent variance: retransform 'predictive' is not available")
     covariance_code(covariance)  # refuses an unknown family
-    if subsample_draw not in GP_SUBSAMPLE_DRAWS:
-        raise ValueError(f"unknown GP subsample_draw {subsample_draw!r}; expected one of {list(GP_SUBSAMPLE_DRAWS)}")
     if additive_start not in GP_ADDITIVE_STARTS:
         raise ValueError(f"unknown GP additive_start {additive_start!r}; expected one of {list(GP_ADDITIVE_STARTS)}")
     if retransform not in GP_RETRANSFORMS:
@@ -380,8 +370,8 @@ def fit_gp(
     z = chord_embed(x, space)
     m, p = z.shape
     n_out = y.shape[1]
-    sub = _subsample(m, subsample, seed, subsample_draw)
-    sub_add = sub if additive_subsample is None else _subsample(m, additive_subsample, seed, subsample_draw)
+    sub = _subsample(m, subsample, seed)
+    sub_add = sub if additive_subsample is None else _subsample(m, additive_subsample, seed)
 
     def shape_of(n_dims: int):  # the correlation family, one length scale per coordinate (ard) or one
         ls0 = np.full(n_dims, length_scale[0]) if kernel == "ard" else length_scale[0]
@@ -556,14 +546,11 @@ def _twin_of(fitted: list[_Fitted], with_add: bool, unit: np.ndarray, atol: floa
     return None
 
 
-def _subsample(m: int, n: int, seed: int, draw: str = "random") -> np.ndarray:
-    """The rows of the hyperparameter fit: ``n`` of ``m`` drawn with ``seed`` (sorted) or the first
-    ``n`` (``draw="first"``); 0 or ``>= m``: all."""
-    if not 0 < n < m:
-        return np.arange(m)
-    if draw == "first":
-        return np.arange(int(n))
-    return np.sort(np.random.default_rng(seed).choice(m, int(n), replace=False))
+def _subsample(m: int, n: int, seed: int) -> np.ndarray:
+    """The rows of the hyperparameter fit: ``n`` of ``m`` drawn with ``seed``, sorted (0 or ``>= m``: all)."""
+    if 0 < n < m:
+        return np.sort(np.random.default_rng(seed).choice(m, int(n), replace=False))
+    return np.arange(m)
 
 
 def _output_groups(groups: npt.ArrayLike | None, n_out: int) -> list[np.ndarray]:

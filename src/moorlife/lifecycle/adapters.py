@@ -521,8 +521,6 @@ def reconstruct_lifecycle(
         out.attrs.update({"rbf_method": "gp", "gp_kernel": g.kernel, "gp_retransform": g.retransform})
         out.attrs.update({"gp_subsample": g.subsample, "gp_thrust": int(g.thrust), "gp_indicator": g.indicator})
         out.attrs.update({"gp_share": g.share, "gp_mean": g.mean, "gp_covariance": g.covariance})
-        if g.subsample_draw != "random":  # the stores of a random draw stay as they were
-            out.attrs["gp_subsample_draw"] = g.subsample_draw
         if g.wind_term != "none":  # the GP stores without the term stay as they were
             out.attrs["gp_wind_term"] = g.wind_term
             out.attrs["gp_wind_subsample"] = g.wind_subsample

@@ -591,7 +591,6 @@ def _gp_in(
         restarts=g.restarts,
         seed=g.seed,
         subsample=g.subsample,
-        subsample_draw=g.subsample_draw,
         retransform=g.retransform,
         groups=gp_groups(cols, g.share),
         prior_mean=g.mean,

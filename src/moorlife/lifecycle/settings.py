@@ -37,8 +37,6 @@ class GPSettings:
     length_scale, signal, noise : GPBounds
         Start and bounds of each hyperparameter (:func:`moorlife.gp.fit_gp`).
     restarts, seed, subsample : int
-    subsample_draw : {"random", "first"}
-        How the hyperparameter fit's subsample is drawn (:func:`moorlife.gp.fit_gp`).
     thrust : bool
         Add the rotor thrust ``T(W)`` as an input coordinate.
     retransform : {"none", "noise", "predictive"}
@@ -68,7 +66,6 @@ class GPSettings:
     restarts: int
     seed: int
     subsample: int
-    subsample_draw: str
     thrust: bool
     retransform: str
     indicator: str
@@ -104,7 +101,6 @@ class GPSettings:
             restarts=int(g["restarts"]),
             seed=int(g["seed"]),
             subsample=int(g["subsample"]),
-            subsample_draw=str(g["subsample_draw"]),
             thrust=bool(g["thrust"]),
             retransform=str(g["retransform"]),
             indicator=str(g["indicator"]),
