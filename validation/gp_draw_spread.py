@@ -50,7 +50,7 @@ def fit_r(cases: xr.Dataset, sims: xr.Dataset, section: dict, seed: int) -> tupl
     f = lifecycle.fit_reconstruction(cases, sims, settings=settings, context="gp_draw_spread")
     pred = lifecycle.predict_outputs(f.model, f.points[f.valid])
     r = lifecycle.validation_metrics(pred, f.values[f.valid])["r"]
-    loo = np.sqrt(np.mean(np.concatenate([m.loo_error for m in f.model.models], axis=1) ** 2, axis=0))
+    loo = np.sqrt(np.mean(f.model.loo_error**2, axis=0))  # per output, in the interpolated (log10) values
     return r, loo, pred, f.values[f.valid]
 
 
