@@ -319,7 +319,7 @@ def load(results: Path, ms: str) -> dict[str, xr.Dataset] | None:
     sims = _open(results / ms / "simulations.zarr")
     if sims is None:
         return None
-    return {
+    stores = {
         "hindcast": _open(results / "metocean" / "hindcast.zarr"),
         "cases": _open(results / "selection" / "cases.zarr"),
         "sims": sims,
@@ -328,6 +328,13 @@ def load(results: Path, ms: str) -> dict[str, xr.Dataset] | None:
         "discrete_states": _open(results / "selection" / "discrete.zarr"),
         "discrete_sims": _open(results / ms / "discrete.zarr"),
     }
+    if stores["truth"] is not None:  # the window's comparison needs all of these: refuse before any fit
+        paths = {"seed2": f"{ms}/truth_seed2.zarr", "discrete_states": "selection/discrete.zarr"}
+        paths["discrete_sims"] = f"{ms}/discrete.zarr"
+        missing = [str(results / p) for k, p in paths.items() if stores[k] is None]
+        if missing:
+            raise SystemExit(f"{results / ms / 'truth.zarr'} exists but its comparison needs {', '.join(missing)}")
+    return stores
 
 
 def _damage_labels(index: pd.Index) -> list[str]:
@@ -483,8 +490,8 @@ def main(argv: list[str] | None = None) -> int:
             )
         pairs[name] = tuple(parts)
     res: dict[tuple[str, str], dict[str, Any]] = {}
-    for ms in a.systems:
-        stores = load(a.results, ms)
+    loaded = {ms: load(a.results, ms) for ms in a.systems}  # every system's stores checked before any fit
+    for ms, stores in loaded.items():
         if stores is None:
             print(f"{ms}: no simulations under {a.results}, skipped", file=sys.stderr)
             continue
