@@ -864,15 +864,119 @@ def test_gp_per_output_choice_never_picks_a_nan_leave_one_out(monkeypatch):
     real = lifecycle.fit._gp_in
 
     def nan_thrust_output_0(name, *a, **k):
-        model, rmse = real(name, *a, **k)
-        return model, np.where((np.arange(rmse.size) == 0) & (name == "thrust"), np.nan, rmse)
+        model, e = real(name, *a, **k)
+        return model, np.where((np.arange(e.shape[1]) == 0) & (name == "thrust"), np.nan, e)
 
     monkeypatch.setattr(lifecycle.fit, "_gp_in", nan_thrust_output_0)  # the thrust space wins output 0 when finite
     model = lifecycle.fit_outputs(x[tr], y[tr], cols, per, thrust=curve)
     assert model.input_space[0] == "paper" and np.isfinite(model.loo_rmse_units).all()
-    monkeypatch.setattr(lifecycle.fit, "_gp_in", lambda name, *a, **k: (real(name, *a, **k)[0], np.full(2, np.nan)))
+    stack = lifecycle.RBFSettings.from_config({**GP, "choose": "stack", "gp": {"subsample": 0}})
+    model = lifecycle.fit_outputs(x[tr], y[tr], cols, stack, thrust=curve)  # no blend with a NaN part
+    assert model.input_space[0] == "paper" and np.isfinite(model.loo_rmse_units).all()
+
+    def all_nan(name, *a, **k):
+        model, e = real(name, *a, **k)
+        return model, np.full_like(e, np.nan)
+
+    monkeypatch.setattr(lifecycle.fit, "_gp_in", all_nan)
     with pytest.raises(ValueError, match=r"output damage_sn/M1 has no finite leave-one-out RMS .*paper.*thrust"):
         lifecycle.fit_outputs(x[tr], y[tr], cols, per, thrust=curve)
+    with pytest.raises(ValueError, match=r"'stack': output damage_sn/M1 has no finite leave-one-out RMS .*paper"):
+        lifecycle.fit_outputs(x[tr], y[tr], cols, stack, thrust=curve)
+
+
+def test_stack_weights_blend_two_candidates_and_never_lose_to_either():
+    """Stacking: the weight of the smallest leave-one-out RMS in units, arithmetic in the
+    interpolated values (geometric for log10); 1 or 0 is one candidate's choice."""
+    rng = np.random.default_rng(5)
+    y = np.exp(rng.standard_normal((400, 3)))
+    ea, eb = rng.standard_normal((2, 400, 3)) * 0.2
+    a, b = y + ea, y + eb  # independent errors of equal size: the blend halves their variance
+    b[:, 1] = y[:, 1] + 5 * eb[:, 1]  # a far worse second candidate
+    a[:, 2], b[:, 2] = y[:, 2] * np.exp(ea[:, 2]), y[:, 2] * np.exp(eb[:, 2])  # a log10 output
+    logs = np.array([False, False, True])
+    w, rmse = lifecycle.stack_weights(y, a, b, logs)
+    assert 0.35 <= w[0] <= 0.65 and w[1] >= 0.9 and 0.3 <= w[2] <= 0.7
+    pure = [np.sqrt(np.mean((y - p) ** 2, axis=0)) for p in (a, b)]
+    assert np.all(rmse <= np.minimum(*pure) * (1 + 1e-12)) and rmse[0] < 0.8 * min(pure[0][0], pure[1][0])
+    for j, blend in enumerate((w[0] * a[:, 0] + (1 - w[0]) * b[:, 0], None, a[:, 2] ** w[2] * b[:, 2] ** (1 - w[2]))):
+        if blend is not None:  # the brute-force blend at the chosen weight
+            assert rmse[j] == pytest.approx(np.sqrt(np.mean((y[:, j] - blend) ** 2)), rel=1e-12)
+    nan_b = b.copy()
+    nan_b[0, 0] = np.nan  # a candidate with a non-finite error is never blended in
+    assert lifecycle.stack_weights(y, a, nan_b, logs)[0][0] == 1.0
+    with pytest.raises(ValueError, match=r"values \(400, 3\), loo_a \(400, 2\)"):
+        lifecycle.stack_weights(y, a[:, :2], b, logs)
+
+
+def test_gp_stack_blends_the_paper_and_thrust_gps_from_the_training_states():
+    """choose: stack: each output the blend of the two spaces' GPs at its leave-one-out weight;
+    the prediction, the leave-one-out residuals, the records' term and the fit's independence
+    from the validation states."""
+    curve = _thrust_curve()
+    hc = _hindcast(600, seed=41)
+    cases = _cases(hc, 90, 15, seed=42)
+    sims = _sims(cases)
+    y2 = _ridge_outputs(cases, curve)
+    sims["damage_sn"] = (("case", "line"), np.outer(y2[:, 0], [1.0, 0.5, 2.0]))
+    sims["surge_mpm"] = ("case", y2[:, 1])
+    gp_cfg = {"subsample": 0, "covariance": "matern52", "restarts": 0}
+    settings = lifecycle.RBFSettings.from_config({**GP, "choose": "stack", "gp": gp_cfg})
+    fitted = lifecycle.fit_reconstruction(cases, sims, settings=settings, thrust=curve)
+    model, x, y, cols = fitted.model, fitted.points[fitted.train], fitted.values[fitted.train], fitted.cols
+    parts = {
+        sp: lifecycle.fit_outputs(
+            x,
+            y,
+            cols,
+            lifecycle.RBFSettings.from_config({**GP, "gp": {**gp_cfg, "thrust": sp == "thrust"}}),
+            lo=fitted.lo,
+            span=fitted.span,
+            thrust=curve,
+        )
+        for sp in ("paper", "thrust")
+    }
+    w = np.zeros(len(cols))
+    for c, wk, sp in zip(model.columns, model.weights, model.spaces):
+        if sp == "paper":
+            w[c] = wk
+    blended = ((w > 0) & (w < 1)).any()
+    assert model.choose == "stack" and blended and set(model.spaces) == {"paper", "thrust"}
+    j_dmg = cols.index(("damage_sn", "M1"))
+    assert w[j_dmg] < 0.5  # the thrust ridge leans on the thrust space
+    best = np.minimum(parts["paper"].loo_rmse_units, parts["thrust"].loo_rmse_units)  # choose: per_output
+    assert np.all(model.loo_rmse_units <= best * (1 + 1e-9))  # the blend never loses to the choice
+    at = lifecycle._points(hc, "time")[:200]
+    pa, pb = (lifecycle.predict_outputs(parts[sp], at) for sp in ("paper", "thrust"))
+    expect = w * pa + (1 - w) * pb
+    logs = model.log_output
+    expect[:, logs] = pa[:, logs] ** w[logs] * pb[:, logs] ** (1 - w[logs])
+    np.testing.assert_allclose(lifecycle.predict_outputs(model, at), expect, rtol=1e-10)
+    np.testing.assert_allclose(
+        model.loo_error, w * parts["paper"].loo_error + (1 - w) * parts["thrust"].loo_error, rtol=1e-12
+    )
+    # the records' term of a blend: the weighted sum of its parts' shares, at the blend's hours
+    from moorlife.lifecycle.records import carried_shares
+
+    dmg = [j for j, c in enumerate(cols) if c[0] == "damage_sn"]
+    pred = lifecycle.predict_outputs(model, at)
+    g = carried_shares(model, at, pred, y, x, dmg)
+    ga, gb = (carried_shares(parts[sp], at, pred, y, x, dmg) for sp in ("paper", "thrust"))
+    np.testing.assert_allclose(g, w[dmg] * ga + (1 - w[dmg]) * gb, rtol=1e-10)
+    kw = {"settings": settings, "n_suggest": 3, "thrust": curve, "compare_transforms": False}
+    a = lifecycle.reconstruct_lifecycle(hc, cases, sims, **kw)
+    assert a.attrs["rbf_choose"] == "stack" and any("+" in v for v in a["input_space"].values.astype(object))
+    assert np.isfinite(a["gp_length_scale"].sel(gp_input="wind_speed").values).all()
+    val = cases["role"].values == "validate"
+    sims["damage_sn"][val] = sims["damage_sn"].values[val] * 3.0
+    sims["surge_mpm"][val] = sims["surge_mpm"].values[val] + 1.0
+    b = lifecycle.reconstruct_lifecycle(hc, cases, sims, **kw)
+    changed = [v for v in a.data_vars if not a[v].equals(b[v])]
+    assert changed and all(v.startswith("validation_") for v in changed), changed
+    with pytest.raises(ValueError, match=r"choose = 'stack' with method 'rbf'; the blend is the GP's"):
+        lifecycle.RBFSettings.from_config({"choose": "stack"})
+    with pytest.raises(ValueError, match=r"gp.thrust = true with choose = 'stack'"):
+        lifecycle.RBFSettings.from_config({**GP, "choose": "stack", "gp": {"thrust": True}})
 
 
 def test_gp_per_output_choice_with_outputs_in_both_spaces():

@@ -64,6 +64,7 @@ from moorlife.lifecycle.fit import (
     gp_groups,
     loo_errors_in_units,
     predict_outputs,
+    stack_weights,
     validation_metrics,
 )
 from moorlife.lifecycle.outputs import (
@@ -132,6 +133,7 @@ __all__ = [
     "recommend",
     "error_indicator",
     "loo_errors_in_units",
+    "stack_weights",
     "suggest_states",
     "life_band",
     "band_sigma",

@@ -160,9 +160,9 @@ def _gp_records(model: Reconstruction) -> tuple[list[str], np.ndarray, np.ndarra
     n = model.n_outputs
     ls = np.full((n, len(inputs)), np.nan)
     sig, noise = np.empty(n), np.empty(n)
-    for g, cols, w in zip(model.models, model.columns, where):
-        ls[np.ix_(cols, w)] = g.length_scale
-        sig[cols], noise[cols] = np.sqrt(g.signal_var), np.sqrt(g.noise_var)
+    for g, cols, w, own in zip(model.models, model.columns, where, model.dominant()):
+        ls[np.ix_(cols[own], w)] = g.length_scale[own]
+        sig[cols[own]], noise[cols[own]] = np.sqrt(g.signal_var[own]), np.sqrt(g.noise_var[own])
     return inputs, ls, sig, noise
 
 
@@ -174,10 +174,10 @@ def _gp_wind_records(model: Reconstruction) -> tuple[np.ndarray, np.ndarray, np.
     inputs, where = _gp_layout(model)
     n = model.n_outputs
     wls, wsd, gate = np.full((n, len(inputs)), np.nan), np.zeros(n), np.full(n, np.inf)
-    for g, cols, w in zip(model.models, model.columns, where):
+    for g, cols, w, own in zip(model.models, model.columns, where, model.dominant()):
         if g.wind_var is not None:
-            wls[np.ix_(cols, w)] = g.wind_length_scale
-            wsd[cols], gate[cols] = np.sqrt(g.wind_var), g.wind_gate
+            wls[np.ix_(cols[own], w)] = g.wind_length_scale[own]
+            wsd[cols[own]], gate[cols[own]] = np.sqrt(g.wind_var[own]), g.wind_gate[own]
     return wls, wsd, gate
 
 

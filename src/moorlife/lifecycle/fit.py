@@ -27,7 +27,9 @@ outputs (:mod:`moorlife.rbf.transform`). The result is a :class:`Reconstruction`
 paper space or with the thrust (``gp.thrust``), one :class:`moorlife.gp.GPModel`.
 ``per_output``: one GP per candidate space (``lifecycle.rbf.spaces``: ``paper``, ``thrust``), and
 each output keeps the one with the smaller leave-one-out RMS error in its own units: one
-:class:`moorlife.gp.GPModel` per space in use, each of its outputs.
+:class:`moorlife.gp.GPModel` per space in use, each of its outputs. ``stack``: the same fits,
+and every output is a weighted blend of the candidates' predictions (stacking), its weight
+chosen from the training states' leave-one-out predictions alone (:func:`stack_weights`).
 """
 
 from __future__ import annotations
@@ -45,7 +47,14 @@ from moorlife.lifecycle.settings import RBFSettings
 from moorlife.lifecycle.spaces import ThrustCoordinate, space_inputs, space_points, space_trend
 from moorlife.space import Space, embed, fit_space
 
-__all__ = ["Reconstruction", "validation_metrics", "fit_outputs", "predict_outputs", "loo_errors_in_units"]
+__all__ = [
+    "Reconstruction",
+    "validation_metrics",
+    "fit_outputs",
+    "predict_outputs",
+    "loo_errors_in_units",
+    "stack_weights",
+]
 
 log = logging.getLogger("moorlife.lifecycle")
 
@@ -117,6 +126,11 @@ class Reconstruction:
     method : {"rbf", "gp"}
     indicator : {"loo", "sd"}
         The error indicator of :func:`moorlife.lifecycle.error_indicator`.
+    weights : tuple of numpy.ndarray, optional
+        ``choose: stack``: the weight of each model in each of its ``columns`` (the columns of
+        the models overlap; an output's weights sum to 1). The blend is arithmetic for a
+        linear output and geometric for a ``log10`` one, i.e. arithmetic in the interpolated
+        values (:func:`predict_outputs`). None: each output is one model's.
     """
 
     models: tuple[rbf.RBFModel, ...]
@@ -135,10 +149,23 @@ class Reconstruction:
     loo_error: np.ndarray
     method: str = "rbf"
     indicator: str = "loo"
+    weights: tuple[np.ndarray, ...] | None = None
 
     @property
     def n_outputs(self) -> int:
         return int(self.shape.size)
+
+    def dominant(self) -> tuple[np.ndarray, ...]:
+        """Per model, a mask of its ``columns`` where it holds the largest weight (the first on a
+        tie): each output's one model for records such as the GP's hyperparameters."""
+        if self.weights is None:
+            return tuple(np.ones(c.size, dtype=bool) for c in self.columns)
+        best = np.full(self.n_outputs, -1.0)
+        owner = np.full(self.n_outputs, -1)
+        for k, (c, w) in enumerate(zip(self.columns, self.weights)):
+            take = w > best[c]
+            best[c[take]], owner[c[take]] = w[take], k
+        return tuple(owner[c] == k for k, c in enumerate(self.columns))
 
 
 def fit_outputs(
@@ -242,8 +269,17 @@ def predict_outputs(model: Reconstruction, points: npt.ArrayLike, *, chunk_rows:
     if model.method == "rbf" and len(model.models) == 1 and model.spaces[0] == names.RBF_SPACE_PAPER:
         return rbf.predict_rbf(model.models[0], points, chunk_rows=chunk_rows)
     x = np.asarray(points, dtype=float)
-    out = np.empty((x.shape[0], model.n_outputs))
     predict = gp.predict_gp if model.method == "gp" else rbf.predict_rbf
+    if model.weights is not None:  # choose: stack, blended in the interpolated values
+        acc = np.zeros((x.shape[0], model.n_outputs))
+        for m, cols, name, w in zip(model.models, model.columns, model.spaces, model.weights):
+            p = predict(m, space_points(name, x, model.thrust), chunk_rows=chunk_rows)
+            logs = model.log_output[cols]
+            p[:, logs] = np.log10(p[:, logs])
+            acc[:, cols] += w * p
+        acc[:, model.log_output] = 10.0 ** acc[:, model.log_output]
+        return acc
+    out = np.empty((x.shape[0], model.n_outputs))
     for m, cols, name in zip(model.models, model.columns, model.spaces):
         out[:, cols] = predict(m, space_points(name, x, model.thrust), chunk_rows=chunk_rows)
     return out
@@ -501,12 +537,14 @@ def _fit_gp(
     y = np.array(values, dtype=float)
     for j in np.flatnonzero(logs):
         y[:, j] = _floored(y[:, j], cols[j])
-    if settings.choose == "per_output":
+    if settings.choose in ("per_output", "stack"):
         candidates = tuple(settings.spaces)
     else:
         candidates = (names.RBF_SPACE_THRUST if g.thrust else names.RBF_SPACE_PAPER,)
     fits = [_gp_in(name, points, y, cols, settings, lo, span, logs, thrust) for name in candidates]
-    rmse = np.array([r for _, r in fits])  # (candidates, n_out)
+    if settings.choose == "stack" and len(candidates) == 2:
+        return _stack_gp(fits, points, y, cols, settings, lo, span, logs, thrust, candidates)
+    rmse = np.array([np.sqrt(np.mean(e * e, axis=0)) for _, e in fits])  # (candidates, n_out)
     pick = _pick_finite(rmse, cols, candidates)
     if len(candidates) > 1:
         log.info(
@@ -547,6 +585,127 @@ def _fit_gp(
     )
 
 
+#: The weights of the first candidate tried by :func:`stack_weights`, first to last (a tie keeps
+#: the earlier): 1, 0.95, ..., 0.
+STACK_GRID = np.linspace(1.0, 0.0, 21)
+
+
+def stack_weights(
+    values: npt.ArrayLike,
+    loo_a: npt.ArrayLike,
+    loo_b: npt.ArrayLike,
+    log_output: npt.ArrayLike,
+    grid: npt.ArrayLike = STACK_GRID,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Per output, the weight of two interpolants' blend with the smallest leave-one-out RMS error.
+
+    Stacking (Breiman 1996, "Stacked regressions"): the blend ``w a + (1 - w) b`` of the two
+    predictions, arithmetic for a linear output and geometric (``a**w b**(1 - w)``, arithmetic in
+    ``log10``) for a ``log10`` one, scored in the output's own units on the leave-one-out
+    predictions of the training states alone. ``w`` 1 or 0 is the choice of one candidate
+    (``choose: per_output``), so the blend's leave-one-out error is never larger than it.
+
+    Parameters
+    ----------
+    values : array_like, shape (m, n_out)
+        The training values (a ``log10`` output's non-positive values floored as for its fit).
+    loo_a, loo_b : array_like, shape (m, n_out)
+        Each candidate's leave-one-out prediction of every training state, back-transformed
+        (positive for a ``log10`` output).
+    log_output : array_like of bool, shape (n_out,)
+    grid : array_like
+        The weights of ``a`` tried, in order; the first on a tie.
+
+    Returns
+    -------
+    weight : numpy.ndarray, shape (n_out,)
+        The weight of ``a``.
+    rmse : numpy.ndarray, shape (n_out,)
+        The blend's leave-one-out RMS error in units (inf where no weight gives a finite one).
+    """
+    y = np.asarray(values, dtype=float)
+    a, b = np.asarray(loo_a, dtype=float), np.asarray(loo_b, dtype=float)
+    logs = np.asarray(log_output, dtype=bool)
+    w = np.asarray(grid, dtype=float)
+    if y.shape != a.shape or y.shape != b.shape or logs.shape != y.shape[1:]:
+        raise ValueError(f"stack_weights: values {y.shape}, loo_a {a.shape}, loo_b {b.shape}, log_output {logs.shape}")
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        ta, tb = a.copy(), b.copy()
+        ta[:, logs], tb[:, logs] = np.log10(a[:, logs]), np.log10(b[:, logs])
+        rmse = np.empty((w.size, y.shape[1]))
+        for k, wk in enumerate(w):
+            t = wk * ta + (1.0 - wk) * tb if 0.0 < wk < 1.0 else (ta if wk >= 1.0 else tb)
+            p = t.copy()
+            p[:, logs] = 10.0 ** t[:, logs]
+            e = y - p
+            rmse[k] = np.sqrt(np.mean(e * e, axis=0))
+    rmse = np.where(np.isfinite(rmse), rmse, np.inf)
+    best = np.argmin(rmse, axis=0)
+    return w[best], rmse[best, np.arange(y.shape[1])]
+
+
+def _stack_gp(
+    fits: Sequence[tuple[gp.GPModel, np.ndarray]],
+    points: np.ndarray,
+    y: np.ndarray,
+    cols: Sequence[tuple[str, str | None]],
+    settings: RBFSettings,
+    lo: npt.ArrayLike | None,
+    span: npt.ArrayLike | None,
+    logs: np.ndarray,
+    thrust: ThrustCoordinate | None,
+    candidates: Sequence[str],
+) -> Reconstruction:
+    """``choose: stack`` with ``method: gp``: every output blended from the two candidate spaces'
+    GPs, with the weight of :func:`stack_weights` on their leave-one-out predictions."""
+    (ma, ea), (mb, eb) = fits
+    w, rmse = stack_weights(y, y - ea, y - eb, logs)
+    bad = ~np.isfinite(rmse)
+    if bad.any():
+        j = int(np.flatnonzero(bad)[0])
+        raise ValueError(
+            f"lifecycle.rbf.choose = 'stack': output {_label(cols[j])} has no finite leave-one-out "
+            f"RMS in any blend of {list(candidates)}"
+        )
+    n_out = len(cols)
+    models, columns, used, weights = [], [], [], []
+    for model, wk, name in ((ma, w, candidates[0]), (mb, 1.0 - w, candidates[1])):
+        c = np.flatnonzero(wk > 0).astype(np.int64)
+        if c.size:
+            models.append(model if c.size == n_out else gp.select_outputs(model, c))
+            columns.append(c)
+            used.append(name)
+            weights.append(wk[c])
+    log.info(
+        "GP blend per output, weight of %s (the rest %s) by leave-one-out RMS in units: %s",
+        candidates[0],
+        candidates[1],
+        {_label(c): round(float(v), 2) for c, v in zip(cols, w)},
+    )
+    label = np.array([f"{candidates[0]}:{v:.2f}+{candidates[1]}:{1 - v:.2f}" for v in w], dtype=object)
+    label[w >= 1.0], label[w <= 0.0] = candidates[0], candidates[1]
+    space, centres = _paper_space(points, lo, span)
+    return Reconstruction(
+        models=tuple(models),
+        columns=tuple(columns),
+        spaces=tuple(used),
+        thrust=thrust,
+        space=space,
+        centres=centres,
+        choose="stack",
+        input_space=label.astype(str),
+        shape=np.full(n_out, np.nan),
+        smoothing=np.where(w >= 0.5, ma.noise_var / ma.signal_var, mb.noise_var / mb.signal_var),
+        log_factor=ma.log_factor**w * mb.log_factor ** (1.0 - w),
+        loo_rmse_units=rmse,
+        log_output=logs,
+        loo_error=w * ma.loo_error + (1.0 - w) * mb.loo_error,
+        method="gp",
+        indicator=settings.gp.indicator,
+        weights=tuple(weights),
+    )
+
+
 def _pick_finite(rmse: np.ndarray, cols: Sequence[tuple[str, str | None]], candidates: Sequence[str]) -> np.ndarray:
     """Per output, the candidate with the smallest finite leave-one-out RMS (the first on a tie).
 
@@ -574,7 +733,7 @@ def _gp_in(
     logs: np.ndarray,
     thrust: ThrustCoordinate | None,
 ) -> tuple[gp.GPModel, np.ndarray]:
-    """The GP of every output in the space ``name``, and its leave-one-out RMS error in units."""
+    """The GP of every output in the space ``name``, and its leave-one-out residuals in units (m, n_out)."""
     g = settings.gp
     x, mask, lo_s, span_s = space_inputs(name, points, lo, span, thrust)
     model = gp.fit_gp(
@@ -610,4 +769,4 @@ def _gp_in(
         else:
             factor = model.log_factor[logs]
         e[:, logs] = y[:, logs] - factor * 10.0 ** (ly - model.loo_error[:, logs])
-    return model, np.sqrt(np.mean(e * e, axis=0))
+    return model, e

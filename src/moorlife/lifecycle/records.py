@@ -47,7 +47,9 @@ def carried_shares(
     Parameters
     ----------
     model : Reconstruction
-        The fitted reconstruction; each model's centres are the training states, in order.
+        The fitted reconstruction; each model's centres are the training states, in order. A
+        blend (``choose: stack``) is linear in each part's transformed prediction, so its shares
+        are the weighted sum of the parts' (with the blend's ``predicted`` as the hours' weights).
     points : array_like, shape (n, 5)
         The hours of the sum (``names.METOCEAN_VARS`` order, physical units).
     predicted : array_like, shape (n, n_out)
@@ -80,7 +82,9 @@ def carried_shares(
     m = xt.shape[0]
     out = np.full((m, len(outs)), np.nan)
     where = {j: k for k, j in enumerate(outs)}
-    for sub, cols, name in zip(model.models, model.columns, model.spaces):
+    blend = model.weights if model.weights is not None else [np.ones(c.size) for c in model.columns]
+    seen = np.zeros(len(outs), dtype=bool)
+    for sub, cols, name, wts in zip(model.models, model.columns, model.spaces, blend):
         here = [(int(jj), int(c)) for jj, c in enumerate(cols) if int(c) in where]
         if not here:
             continue
@@ -97,9 +101,11 @@ def carried_shares(
             xts = space_points(name, xt, model.thrust)
             g = rbf.training_weights(sub, xs, w, outputs=sel, train_points=xts, chunk_rows=chunk_rows)
         for k, (jj, c) in enumerate(here):
-            gi = g[:, k] if logs[jj] else g[:, k] * yt[:, c]
+            gi = wts[jj] * (g[:, k] if logs[jj] else g[:, k] * yt[:, c])  # a blend's sum moves by each part's
             s = p[:, c].sum()
-            out[:, where[c]] = gi / s if s > 0 else np.nan
+            share = gi / s if s > 0 else np.full(m, np.nan)
+            out[:, where[c]] = out[:, where[c]] + share if seen[where[c]] else share
+            seen[where[c]] = True
     return out
 
 

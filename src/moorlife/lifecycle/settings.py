@@ -143,11 +143,13 @@ class RBFSettings:
         Ridge candidates on the kernel diagonal; with several, each output takes the one with
         the smallest leave-one-out error, jointly with its shape (``(0.0,)``: exact
         interpolation, the paper's choice).
-    choose : {"global", "per_output"}
+    choose : {"global", "per_output", "stack"}
         ``global``: the paper's 5-D space for every output, damage by ``log_damage``;
         ``per_output``: space, transform, ``q0`` and smoothing per output by the leave-one-out
         error in the output's units (:func:`moorlife.rbf.choose_per_output`); with ``method:
         gp``, the space only (one GP per candidate, :func:`moorlife.lifecycle.fit_outputs`).
+        ``stack`` (``method: gp``): a blend of the GPs of both ``spaces`` per output, weighted by
+        the leave-one-out error (:func:`moorlife.lifecycle.stack_weights`).
     space : str
         Input space of ``global`` (``names.RBF_SPACES``; ``"paper"``: the paper's method).
     spaces : tuple of str
@@ -251,10 +253,14 @@ class RBFSettings:
                 f"{source}: lifecycle.rbf.space = {out.space!r} with method 'gp'; the GP's space is set by gp.thrust"
             )
         gp_spaces = (names.RBF_SPACE_PAPER, names.RBF_SPACE_THRUST)
-        if out.method == "gp" and out.choose == "per_output":
+        if out.choose == "stack" and out.method != "gp":
+            raise ValueError(
+                f"{source}: lifecycle.rbf.choose = 'stack' with method {out.method!r}; the blend is the GP's (method: gp)"
+            )
+        if out.method == "gp" and out.choose in ("per_output", "stack"):
             if out.gp.thrust:
                 raise ValueError(
-                    f"{source}: lifecycle.rbf.gp.thrust = true with choose = 'per_output'; "
+                    f"{source}: lifecycle.rbf.gp.thrust = true with choose = {out.choose!r}; "
                     "the per-output choice takes its spaces from lifecycle.rbf.spaces"
                 )
             bad = [v for v in out.spaces if v not in gp_spaces]

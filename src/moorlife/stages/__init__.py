@@ -135,7 +135,7 @@ def thrust_for(
     """The thrust coordinate of ``config/platform.yaml`` when the RBF fit may use the thrust space.
 
     ``settings`` is a :class:`moorlife.lifecycle.RBFSettings`; None unless ``choose`` is
-    ``per_output`` with ``"thrust"`` among its ``spaces``, ``global`` with ``space`` ``"thrust"``,
+    ``per_output`` or ``stack`` with ``"thrust"`` among its ``spaces``, ``global`` with ``space`` ``"thrust"``,
     or ``method`` is ``gp`` with ``gp.thrust`` (the lifecycle, rounds and replicates stages).
     The steady curve (:class:`moorlife.lifecycle.ThrustCurve`), or with
     ``thrust.statistic: turbulent_sd`` its turbulent thrust
@@ -147,7 +147,7 @@ def thrust_for(
     from moorlife.io.platform import read_platform_config
 
     gp_thrust = settings.method == "gp" and settings.gp.thrust
-    per_output = settings.choose == "per_output"
+    per_output = settings.choose in ("per_output", "stack")
     candidates = settings.spaces if per_output else (settings.space,)
     if not gp_thrust and names.RBF_SPACE_THRUST not in candidates:
         return None
