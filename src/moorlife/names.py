@@ -188,7 +188,7 @@ RBF_LOO_RMSE_UNITS = "loo_rmse_units"
 RBF_CHOICE_ATTRS: dict[str, dict[str, str]] = {
     RBF_INPUT_SPACE: {
         "units": "1",
-        "long_name": "RBF input space (paper: 5-D; thrust: + T(W); weighted: scalars weighted)",
+        "long_name": "RBF input space (paper: 5-D; thrust: + T(W); weighted: scalars weighted; paper:w+thrust:1-w: a blend, choose: stack)",
     },
     RBF_TRANSFORM: {"units": "1", "long_name": "RBF transform of the output (linear or log10)"},
     RBF_LOG_FACTOR: {"units": "1", "long_name": "back-transform factor c of a log10 output (c 10**f; 1: none)"},
