@@ -542,8 +542,11 @@ def _fit_gp(
     else:
         candidates = (names.RBF_SPACE_THRUST if g.thrust else names.RBF_SPACE_PAPER,)
     fits = [_gp_in(name, points, y, cols, settings, lo, span, logs, thrust) for name in candidates]
+    space, centres = _paper_space(points, lo, span)
     if settings.choose == "stack" and len(candidates) == 2:
-        return _stack_gp(fits, points, y, cols, settings, lo, span, logs, thrust, candidates)
+        return _stack_gp(
+            fits, y, cols, logs, candidates, thrust=thrust, space=space, centres=centres, indicator=g.indicator
+        )
     rmse = np.array([np.sqrt(np.mean(e * e, axis=0)) for _, e in fits])  # (candidates, n_out)
     pick = _pick_finite(rmse, cols, candidates)
     if len(candidates) > 1:
@@ -564,7 +567,6 @@ def _fit_gp(
         smoothing[c] = model.noise_var / model.signal_var
         factor[c] = model.log_factor
         loo[:, c] = model.loo_error
-    space, centres = _paper_space(points, lo, span)
     return Reconstruction(
         models=tuple(models),
         columns=tuple(columns),
@@ -646,18 +648,20 @@ def stack_weights(
 
 def _stack_gp(
     fits: Sequence[tuple[gp.GPModel, np.ndarray]],
-    points: np.ndarray,
     y: np.ndarray,
     cols: Sequence[tuple[str, str | None]],
-    settings: RBFSettings,
-    lo: npt.ArrayLike | None,
-    span: npt.ArrayLike | None,
     logs: np.ndarray,
-    thrust: ThrustCoordinate | None,
     candidates: Sequence[str],
+    *,
+    thrust: ThrustCoordinate | None,
+    space: Space,
+    centres: np.ndarray,
+    indicator: str,
 ) -> Reconstruction:
     """``choose: stack`` with ``method: gp``: every output blended from the two candidate spaces'
-    GPs, with the weight of :func:`stack_weights` on their leave-one-out predictions."""
+    GPs (``fits``: each GP and its leave-one-out residuals in units, :func:`_gp_in`), with the
+    weight of :func:`stack_weights` on their leave-one-out predictions; ``space``, ``centres``
+    and ``indicator`` go to the :class:`Reconstruction` as they are."""
     (ma, ea), (mb, eb) = fits
     w, rmse = stack_weights(y, y - ea, y - eb, logs)
     bad = ~np.isfinite(rmse)
@@ -684,7 +688,6 @@ def _stack_gp(
     )
     label = np.array([f"{candidates[0]}:{v:.2f}+{candidates[1]}:{1 - v:.2f}" for v in w], dtype=object)
     label[w >= 1.0], label[w <= 0.0] = candidates[0], candidates[1]
-    space, centres = _paper_space(points, lo, span)
     return Reconstruction(
         models=tuple(models),
         columns=tuple(columns),
@@ -701,7 +704,7 @@ def _stack_gp(
         log_output=logs,
         loo_error=w * ma.loo_error + (1.0 - w) * mb.loo_error,
         method="gp",
-        indicator=settings.gp.indicator,
+        indicator=indicator,
         weights=tuple(weights),
     )
 
