@@ -315,19 +315,25 @@ def choose(a: dict[str, Any], b: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
+def store_paths(results: Path, ms: str) -> dict[str, Path]:
+    """Every store a system's measurement reads, by its key in :func:`load`'s dict."""
+    return {
+        "hindcast": results / "metocean" / "hindcast.zarr",
+        "cases": results / "selection" / "cases.zarr",
+        "sims": results / ms / "simulations.zarr",
+        "truth": results / ms / "truth.zarr",
+        "seed2": results / ms / "truth_seed2.zarr",
+        "discrete_states": results / "selection" / "discrete.zarr",
+        "discrete_sims": results / ms / "discrete.zarr",
+    }
+
+
 def load(results: Path, ms: str) -> dict[str, xr.Dataset] | None:
-    sims = _open(results / ms / "simulations.zarr")
+    paths = store_paths(results, ms)
+    sims = _open(paths["sims"])
     if sims is None:
         return None
-    return {
-        "hindcast": _open(results / "metocean" / "hindcast.zarr"),
-        "cases": _open(results / "selection" / "cases.zarr"),
-        "sims": sims,
-        "truth": _open(results / ms / "truth.zarr"),
-        "seed2": _open(results / ms / "truth_seed2.zarr"),
-        "discrete_states": _open(results / "selection" / "discrete.zarr"),
-        "discrete_sims": _open(results / ms / "discrete.zarr"),
-    }
+    return {key: sims if key == "sims" else _open(path) for key, path in paths.items()}
 
 
 def check_truth_inputs(results: Path, ms: str, stores: dict[str, xr.Dataset]) -> None:
@@ -338,13 +344,10 @@ def check_truth_inputs(results: Path, ms: str, stores: dict[str, xr.Dataset]) ->
     """
     if stores["truth"] is None:
         return
-    needed = {
-        "discrete_states": results / "selection" / "discrete.zarr",
-        "discrete_sims": results / ms / "discrete.zarr",
-    }
-    missing = [str(path) for key, path in needed.items() if stores[key] is None]
+    paths = store_paths(results, ms)
+    missing = [str(paths[key]) for key in ("discrete_states", "discrete_sims") if stores[key] is None]
     if missing:
-        raise SystemExit(f"{results / ms / 'truth.zarr'} exists but its comparison needs {', '.join(missing)}")
+        raise SystemExit(f"{paths['truth']} exists but its comparison needs {', '.join(missing)}")
 
 
 def _damage_labels(index: pd.Index) -> list[str]:
