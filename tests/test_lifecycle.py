@@ -528,6 +528,20 @@ def _ridge_outputs(cases: xr.Dataset, curve: lifecycle.ThrustCurve) -> np.ndarra
     return np.column_stack([ridge, smooth])
 
 
+def _ridge_stores(n_hours: int, n_train: int, n_val: int, *, seed: int, smooth: str = "heave_mpm"):
+    """Stores of :func:`_ridge_outputs`: the ridge as the S-N damage of every line (1, 0.5 and 2
+    times it) and the smooth output as ``smooth``; the hindcast drawn with ``seed``, the cases with
+    ``seed + 1``. Returns the thrust curve, the hindcast, the cases and the simulations."""
+    curve = _thrust_curve()
+    hc = _hindcast(n_hours, seed=seed)
+    cases = _cases(hc, n_train, n_val, seed=seed + 1)
+    sims = _sims(cases)
+    y = _ridge_outputs(cases, curve)
+    sims["damage_sn"] = (("case", "line"), np.outer(y[:, 0], [1.0, 0.5, 2.0]))
+    sims[smooth] = ("case", y[:, 1])
+    return curve, hc, cases, sims
+
+
 def _ridge_training():
     """150 training and 30 validation states of :func:`_ridge_outputs`: curve, points, values, train mask, columns."""
     curve = _thrust_curve()
@@ -671,13 +685,7 @@ def test_lifecycle_with_the_wind_trend_records_it_and_ignores_the_validation_sta
 
 def test_per_output_fit_does_not_depend_on_the_validation_states():
     """Perturbing the validation outputs changes the validation metrics and nothing else."""
-    curve = _thrust_curve()
-    hc = _hindcast(1500, seed=23)
-    cases = _cases(hc, 90, 25, seed=24)
-    sims = _sims(cases)
-    y = _ridge_outputs(cases, curve)
-    sims["damage_sn"] = (("case", "line"), np.outer(y[:, 0], [1.0, 0.5, 2.0]))
-    sims["heave_mpm"] = ("case", y[:, 1])
+    curve, hc, cases, sims = _ridge_stores(1500, 90, 25, seed=23)
     settings = lifecycle.RBFSettings.from_config({**PER_OUTPUT, "retransform": "smearing", "smoothing": [0.0, 0.01]})
     a = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=5, thrust=curve)
     val = cases["role"].values == "validate"
@@ -753,13 +761,7 @@ GP = {"method": "gp", "outputs": list(lifecycle.DEFAULT_OUTPUTS), "gp": {"subsam
 def test_gp_fit_does_not_depend_on_the_validation_states(share, mean, indicator, covariance, wind):
     """method: gp: perturbing the validation outputs changes the validation metrics and nothing else
     (``wind``: ``gp.wind_term``, the damage with an additive term of the wind)."""
-    curve = _thrust_curve()
-    hc = _hindcast(1500, seed=30)
-    cases = _cases(hc, 90, 25, seed=31)
-    sims = _sims(cases)
-    y = _ridge_outputs(cases, curve)
-    sims["damage_sn"] = (("case", "line"), np.outer(y[:, 0], [1.0, 0.5, 2.0]))
-    sims["heave_mpm"] = ("case", y[:, 1])
+    curve, hc, cases, sims = _ridge_stores(1500, 90, 25, seed=30)
     gp_cfg = {"subsample": 40, "thrust": True, "indicator": indicator, "share": share, "mean": mean}
     settings = lifecycle.RBFSettings.from_config({**GP, "gp": {**gp_cfg, "covariance": covariance, "wind_term": wind}})
     a = lifecycle.reconstruct_lifecycle(hc, cases, sims, settings=settings, n_suggest=5, thrust=curve)
@@ -913,13 +915,7 @@ def test_gp_stack_blends_the_paper_and_thrust_gps_from_the_training_states():
     """choose: stack: each output the blend of the two spaces' GPs at its leave-one-out weight;
     the prediction, the leave-one-out residuals, the records' term and the fit's independence
     from the validation states."""
-    curve = _thrust_curve()
-    hc = _hindcast(600, seed=41)
-    cases = _cases(hc, 90, 15, seed=42)
-    sims = _sims(cases)
-    y2 = _ridge_outputs(cases, curve)
-    sims["damage_sn"] = (("case", "line"), np.outer(y2[:, 0], [1.0, 0.5, 2.0]))
-    sims["surge_mpm"] = ("case", y2[:, 1])
+    curve, hc, cases, sims = _ridge_stores(600, 90, 15, seed=41, smooth="surge_mpm")
     gp_cfg = {"subsample": 0, "covariance": "matern52", "restarts": 0}
     settings = lifecycle.RBFSettings.from_config({**GP, "choose": "stack", "gp": gp_cfg})
     fitted = lifecycle.fit_reconstruction(cases, sims, settings=settings, thrust=curve)
