@@ -887,6 +887,38 @@ def test_gp_per_output_choice_never_picks_a_nan_leave_one_out(monkeypatch):
         lifecycle.fit_outputs(x[tr], y[tr], cols, stack, thrust=curve)
 
 
+def test_validation_r_interval_matches_the_sampling_law_and_widens_on_one_dominant_state():
+    """The bootstrap interval of r: the normal theory's standard error (1 - rho^2) / sqrt(n) on
+    bivariate normal states, wider when one state carries the correlation, NaN on a constant
+    output, deterministic and independent of the other outputs."""
+    rng = np.random.default_rng(11)
+    n, rho = 225, 0.98
+    x = rng.standard_normal((n, 4))
+    y = rho * x + np.sqrt(1 - rho**2) * rng.standard_normal((n, 4))
+    y[:, 3] = 1.0  # a constant output: r undefined
+    low, high, se = lifecycle.validation_r_interval(x, y)
+    r = lifecycle.validation_metrics(x, y)["r"]
+    law = (1 - rho**2) / np.sqrt(n)
+    assert np.all(np.abs(se[:3] / law - 1) < 0.25), (se, law)
+    assert np.all((low[:3] < r[:3]) & (r[:3] < high[:3]))
+    assert np.all(np.abs((high - low)[:3] / (2 * 1.645 * law) - 1) < 0.3)
+    assert np.isnan([low[3], high[3], se[3]]).all()
+    exact = lifecycle.validation_r_interval(x[:, :1], 2 * x[:, :1] + 1)  # r = 1 on every resample
+    assert exact[0][0] == pytest.approx(1.0) and exact[1][0] == pytest.approx(1.0) and exact[2][0] < 1e-12
+    again = lifecycle.validation_r_interval(x[:, [2, 0]], y[:, [2, 0]])
+    assert again[0][1] == low[0] and again[1][0] == high[2]  # the same draws for every output
+    assert np.array_equal(np.stack(lifecycle.validation_r_interval(x, y)), np.stack((low, high, se)), equal_nan=True)
+    # one state ten spreads out on both sides: r rises, and rests on that state
+    xp, yp = x[:, :1].copy(), (0.6 * x[:, :1] + 0.8 * rng.standard_normal((n, 1)))
+    xp[0], yp[0] = 10.0, 10.0
+    lo1, hi1, se1 = lifecycle.validation_r_interval(xp, yp)
+    r1 = lifecycle.validation_metrics(xp, yp)["r"][0]
+    law1 = (1 - r1**2) / np.sqrt(n)
+    assert r1 > 0.65 and se1[0] > 2.5 * law1 and hi1[0] - lo1[0] > 2 * (2 * 1.645 * law1) and lo1[0] < r1 < hi1[0]
+    with pytest.raises(ValueError, match=r"predicted \(225, 4\) and simulated \(225, 3\)"):
+        lifecycle.validation_r_interval(x, y[:, :3])
+
+
 def test_stack_weights_blend_two_candidates_and_never_lose_to_either():
     """Stacking: the weight of the smallest leave-one-out RMS in units, arithmetic in the
     interpolated values (geometric for log10); 1 or 0 is one candidate's choice."""

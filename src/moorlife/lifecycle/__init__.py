@@ -66,6 +66,7 @@ from moorlife.lifecycle.fit import (
     predict_outputs,
     stack_weights,
     validation_metrics,
+    validation_r_interval,
 )
 from moorlife.lifecycle.outputs import (
     DEFAULT_OUTPUTS,
@@ -111,6 +112,7 @@ __all__ = [
     "stack_outputs",
     "unstack_outputs",
     "validation_metrics",
+    "validation_r_interval",
     "Reconstruction",
     "Fitted",
     "fit_reconstruction",

@@ -27,12 +27,14 @@ from moorlife.lifecycle.damage import (
     life_damage,
 )
 from moorlife.lifecycle.fit import (
+    R_INTERVAL_LEVEL,
     Reconstruction,
     fit_outputs,
     gp_input_names,
     loo_errors_in_units,
     predict_outputs,
     validation_metrics,
+    validation_r_interval,
 )
 from moorlife.lifecycle.outputs import (
     _label,
@@ -188,6 +190,11 @@ def _validation_vars(
     pv = predict_outputs(model, x_val)
     for k, v in validation_metrics(pv, y_val).items():
         out[f"validation_{k}"] = ("output", v, _a(f"validation {k} on {len(ids)} states"))
+    low, high, se = validation_r_interval(pv, y_val)
+    text = f"{R_INTERVAL_LEVEL:.0%} BCa bootstrap interval of validation r over its {len(ids)} states"
+    out["validation_r_low"] = ("output", low, _a(f"lower bound of the {text}"))
+    out["validation_r_high"] = ("output", high, _a(f"upper bound of the {text}"))
+    out["validation_r_se"] = ("output", se, _a(f"bootstrap standard error of validation r ({len(ids)} states)"))
     out = out.assign_coords(validate=("validate", ids))
     out["validate_points"] = (("validate", "metocean_var"), x_val, _a("validation sea states"))
     out["validation_predicted"] = (("validate", "output"), pv, _a("rebuilt value at validation states"))

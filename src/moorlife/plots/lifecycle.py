@@ -72,7 +72,8 @@ def validation_scatter(ds: xr.Dataset, title: str = "") -> Figure:
     ----------
     ds : xarray.Dataset
         ``lifecycle.zarr`` (``validation_predicted``, ``validation_simulated`` on
-        (``validate``, ``output``), ``validation_r``, ``validation_rmse``).
+        (``validate``, ``output``), ``validation_r``, ``validation_rmse``; ``validation_r_low``
+        and ``validation_r_high``, the bootstrap interval, when present).
     title : str
     """
     labels = [str(o) for o in ds["output"].values if str(o).split("/")[0] in CONTRACT_OUTPUTS]
@@ -89,7 +90,10 @@ def validation_scatter(ds: xr.Dataset, title: str = "") -> Figure:
             a, b = np.polyfit(s, p, 1)
             ax.plot([lo, hi], [a * lo + b, a * hi + b], color="tab:red", lw=0.9, ls="--", label=f"fit {a:.2f}x")
         r = float(ds["validation_r"].sel(output=lab))
-        ax.set_title(f"{lab}\nr = {r:.3f}", fontsize=8)
+        span = ""
+        if "validation_r_low" in ds:  # the bootstrap interval over the validation states
+            span = f" ({float(ds['validation_r_low'].sel(output=lab)):.3f}-{float(ds['validation_r_high'].sel(output=lab)):.3f})"
+        ax.set_title(f"{lab}\nr = {r:.3f}{span}", fontsize=8)
         ax.set_xlabel(f"simulated ({_UNITS.get(var, '')})", fontsize=7)
         ax.set_ylabel("rebuilt", fontsize=7)
         ax.tick_params(labelsize=6)

@@ -118,6 +118,11 @@ def run(
                 logger.info(
                     "%s: %s", k, {str(o): round(float(v), 4) for o, v in zip(ds["output"].values, ds[k].values)}
                 )
+        if "validation_r_low" in ds:
+            low, high = ds["validation_r_low"], ds["validation_r_high"]
+            rows = zip(ds["output"].values, low.values, high.values)
+            interval = {str(o): (round(float(a), 4), round(float(b), 4)) for o, a, b in rows}
+            logger.info("validation r, %s: %s", low.attrs["long_name"].removeprefix("lower bound of the "), interval)
         if "lifecycle_damage" in ds:
             logger.info("life-cycle damage (curve x line):\n%s", ds["lifecycle_damage"].to_pandas())
         chunks = {names.TIME: min(ds.sizes[names.TIME], 65536)}
