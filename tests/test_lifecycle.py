@@ -943,6 +943,32 @@ def test_stack_weights_blend_two_candidates_and_never_lose_to_either():
         lifecycle.stack_weights(y, a[:, :2], b, logs)
 
 
+def test_stack_weights_resampled_stay_mixed_where_the_leave_one_out_cannot_tell():
+    """stack.resamples: the mean weight over bootstrap resamples of the training states. Two
+    candidates with almost the same errors: all states pick one whole, the resamples split, so
+    the weight stays mixed; a far better candidate keeps its weight; seeded and bit-stable."""
+    rng = np.random.default_rng(1)
+    y = np.exp(rng.standard_normal((300, 2)))
+    e = rng.standard_normal((300, 2)) * 0.3
+    a = y + e
+    b = y + e * (1 + 0.05 * rng.choice([-1.0, 1.0], (300, 2)))  # 5 % larger or smaller, state by state
+    b[:, 1] = y[:, 1] + 4 * e[:, 1]  # a far worse second candidate
+    logs = np.zeros(2, dtype=bool)
+    w0, r0 = lifecycle.stack_weights(y, a, b, logs)
+    w, r = lifecycle.stack_weights(y, a, b, logs, resamples=200, seed=3)
+    assert w0[0] in (0.0, 1.0) and 0.1 < w[0] < 0.9 and w[1] >= 0.95
+    assert np.all(r >= r0) and r[0] < 1.01 * r0[0]  # all states' optimum, and barely above it
+    blend = w[0] * a[:, 0] + (1 - w[0]) * b[:, 0]
+    assert r[0] == pytest.approx(np.sqrt(np.mean((y[:, 0] - blend) ** 2)), rel=1e-12)
+    again = lifecycle.stack_weights(y, a, b, logs, resamples=200, seed=3)
+    assert np.array_equal(again[0], w) and np.array_equal(again[1], r)
+    nan_b = b.copy()
+    nan_b[0, 0] = np.nan  # not finite on all states: the choice on all states, never a mean
+    assert lifecycle.stack_weights(y, a, nan_b, logs, resamples=50)[0][0] == 1.0
+    with pytest.raises(ValueError, match="stack.resamples = 20 with choose = 'per_output'"):
+        lifecycle.RBFSettings.from_config({**GP, "choose": "per_output", "stack": {"resamples": 20}})
+
+
 def test_gp_stack_blends_the_paper_and_thrust_gps_from_the_training_states():
     """choose: stack: each output the blend of the two spaces' GPs at its leave-one-out weight;
     the prediction, the leave-one-out residuals, the records' term and the fit's independence

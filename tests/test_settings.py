@@ -74,6 +74,8 @@ RENAMED = {
         "trend_knots": "wind_trend.knots",
         "trend_harmonics": "wind_trend.harmonics",
         "thrust_statistic": "thrust.statistic",
+        "stack_resamples": "stack.resamples",
+        "stack_seed": "stack.seed",
         "thrust_averaging_time": "thrust.averaging_time",
     },
 }

@@ -58,7 +58,7 @@ def fit_parts(cfg: dict[str, Any], stores: dict[str, Any]) -> dict[str, Any]:
     def capture(fits: Any, y: Any, cols: Any, logs: Any, candidates: Any, **kw: Any) -> Any:
         seen["loo"] = (y, y - fits[0][1], y - fits[1][1], logs)
         for name, w in (("a", 1.0), ("b", 0.0)):  # each part whole: the blend with the weight 1 or 0
-            fit.stack_weights = lambda v, *_, w=w: (np.full(v.shape[1], w), np.zeros(v.shape[1]))
+            fit.stack_weights = lambda v, *_, w=w, **kw: (np.full(v.shape[1], w), np.zeros(v.shape[1]))
             seen[name] = original(fits, y, cols, logs, candidates, **kw)
         fit.stack_weights = weights
         return original(fits, y, cols, logs, candidates, **kw)

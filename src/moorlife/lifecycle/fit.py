@@ -621,7 +621,17 @@ def _fit_gp(
     space, centres = _paper_space(points, lo, span)
     if settings.choose == "stack" and len(candidates) == 2:
         return _stack_gp(
-            fits, y, cols, logs, candidates, thrust=thrust, space=space, centres=centres, indicator=g.indicator
+            fits,
+            y,
+            cols,
+            logs,
+            candidates,
+            thrust=thrust,
+            space=space,
+            centres=centres,
+            indicator=g.indicator,
+            resamples=settings.stack_resamples,
+            seed=settings.stack_seed,
         )
     rmse = np.array([np.sqrt(np.mean(e * e, axis=0)) for _, e in fits])  # (candidates, n_out)
     pick = _pick_finite(rmse, cols, candidates)
@@ -674,6 +684,9 @@ def stack_weights(
     loo_b: npt.ArrayLike,
     log_output: npt.ArrayLike,
     grid: npt.ArrayLike = STACK_GRID,
+    *,
+    resamples: int = 0,
+    seed: int = 0,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Per output, the weight of two interpolants' blend with the smallest leave-one-out RMS error.
 
@@ -682,6 +695,12 @@ def stack_weights(
     ``log10``) for a ``log10`` one, scored in the output's own units on the leave-one-out
     predictions of the training states alone. ``w`` 1 or 0 is the choice of one candidate
     (``choose: per_output``), so the blend's leave-one-out error is never larger than it.
+
+    With ``resamples`` N > 0 the weight is instead the mean, rounded to 0.01, of that choice over
+    N bootstrap resamples of the training states (bootstrap model averaging, Buckland, Burnham
+    and Augustin 1997): a preference of the leave-one-out that is within its own sampling
+    scatter gives a mixed weight rather than one candidate whole. An output where some weight of
+    the grid has no finite error on all states keeps the choice on all states.
 
     Parameters
     ----------
@@ -693,13 +712,18 @@ def stack_weights(
     log_output : array_like of bool, shape (n_out,)
     grid : array_like
         The weights of ``a`` tried, in order; the first on a tie.
+    resamples : int
+        Bootstrap resamples of the training states (0: none).
+    seed : int
+        Seed of the resamples.
 
     Returns
     -------
     weight : numpy.ndarray, shape (n_out,)
         The weight of ``a``.
     rmse : numpy.ndarray, shape (n_out,)
-        The blend's leave-one-out RMS error in units (inf where no weight gives a finite one).
+        The blend's leave-one-out RMS error in units at that weight, on all training states (inf
+        where no weight gives a finite one).
     """
     y = np.asarray(values, dtype=float)
     a, b = np.asarray(loo_a, dtype=float), np.asarray(loo_b, dtype=float)
@@ -707,19 +731,38 @@ def stack_weights(
     w = np.asarray(grid, dtype=float)
     if y.shape != a.shape or y.shape != b.shape or logs.shape != y.shape[1:]:
         raise ValueError(f"stack_weights: values {y.shape}, loo_a {a.shape}, loo_b {b.shape}, log_output {logs.shape}")
+    if resamples < 0:
+        raise ValueError(f"stack_weights: resamples must be >= 0, got {resamples}")
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         ta, tb = a.copy(), b.copy()
         ta[:, logs], tb[:, logs] = np.log10(a[:, logs]), np.log10(b[:, logs])
-        rmse = np.empty((w.size, y.shape[1]))
-        for k, wk in enumerate(w):
-            t = wk * ta + (1.0 - wk) * tb if 0.0 < wk < 1.0 else (ta if wk >= 1.0 else tb)
+    rmse = _blend_rmse(y, ta, tb, logs, w[:, None] * np.ones(y.shape[1]))
+    best = np.argmin(rmse, axis=0)
+    weight, score = w[best], rmse[best, np.arange(y.shape[1])]
+    if resamples:
+        bag = np.isfinite(rmse).all(axis=0)
+        rng = np.random.default_rng(seed)
+        chosen = np.empty((resamples, y.shape[1]))
+        for k in range(resamples):
+            i = rng.integers(0, y.shape[0], y.shape[0])
+            chosen[k] = w[np.argmin(_blend_rmse(y[i], ta[i], tb[i], logs, w[:, None] * np.ones(y.shape[1])), axis=0)]
+        weight = np.where(bag, np.round(chosen.mean(axis=0), 2), weight)
+        score = np.where(bag, _blend_rmse(y, ta, tb, logs, weight[None, :])[0], score)
+    return weight, score
+
+
+def _blend_rmse(y: np.ndarray, ta: np.ndarray, tb: np.ndarray, logs: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """The RMS error in units of the blends ``weights`` (k, n_out) of ``ta`` and ``tb`` (interpolated
+    values; ``log10`` for the ``logs`` columns): shape (k, n_out), inf where not finite."""
+    rmse = np.empty(weights.shape)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for k, wk in enumerate(weights):
+            t = np.where((wk > 0.0) & (wk < 1.0), wk * ta + (1.0 - wk) * tb, np.where(wk >= 1.0, ta, tb))
             p = t.copy()
             p[:, logs] = 10.0 ** t[:, logs]
             e = y - p
             rmse[k] = np.sqrt(np.mean(e * e, axis=0))
-    rmse = np.where(np.isfinite(rmse), rmse, np.inf)
-    best = np.argmin(rmse, axis=0)
-    return w[best], rmse[best, np.arange(y.shape[1])]
+    return np.where(np.isfinite(rmse), rmse, np.inf)
 
 
 def _stack_gp(
@@ -733,13 +776,16 @@ def _stack_gp(
     space: Space,
     centres: np.ndarray,
     indicator: str,
+    resamples: int = 0,
+    seed: int = 0,
 ) -> Reconstruction:
     """``choose: stack`` with ``method: gp``: every output blended from the two candidate spaces'
     GPs (``fits``: each GP and its leave-one-out residuals in units, :func:`_gp_in`), with the
-    weight of :func:`stack_weights` on their leave-one-out predictions; ``space``, ``centres``
-    and ``indicator`` go to the :class:`Reconstruction` as they are."""
+    weight of :func:`stack_weights` on their leave-one-out predictions (``resamples`` and
+    ``seed`` its bootstrap); ``space``, ``centres`` and ``indicator`` go to the
+    :class:`Reconstruction` as they are."""
     (ma, ea), (mb, eb) = fits
-    w, rmse = stack_weights(y, y - ea, y - eb, logs)
+    w, rmse = stack_weights(y, y - ea, y - eb, logs, resamples=resamples, seed=seed)
     bad = ~np.isfinite(rmse)
     if bad.any():
         j = int(np.flatnonzero(bad)[0])
@@ -757,9 +803,10 @@ def _stack_gp(
             used.append(name)
             weights.append(wk[c])
     log.info(
-        "GP blend per output, weight of %s (the rest %s) by leave-one-out RMS in units: %s",
+        "GP blend per output, weight of %s (the rest %s) by leave-one-out RMS in units%s: %s",
         candidates[0],
         candidates[1],
+        f", mean over {resamples} bootstrap resamples" if resamples else "",
         {_label(c): round(float(v), 2) for c, v in zip(cols, w)},
     )
     label = np.array([f"{candidates[0]}:{v:.2f}+{candidates[1]}:{1 - v:.2f}" for v in w], dtype=object)

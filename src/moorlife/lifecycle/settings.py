@@ -150,6 +150,10 @@ class RBFSettings:
         gp``, the space only (one GP per candidate, :func:`moorlife.lifecycle.fit_outputs`).
         ``stack`` (``method: gp``): a blend of the GPs of both ``spaces`` per output, weighted by
         the leave-one-out error (:func:`moorlife.lifecycle.stack_weights`).
+    stack_resamples, stack_seed : int
+        ``choose: stack``: 0, the weight of the smallest leave-one-out error on all training
+        states; N > 0, its mean over N bootstrap resamples of them, seeded by ``stack_seed``
+        (:func:`moorlife.lifecycle.stack_weights`).
     space : str
         Input space of ``global`` (``names.RBF_SPACES``; ``"paper"``: the paper's method).
     spaces : tuple of str
@@ -191,6 +195,8 @@ class RBFSettings:
     log_damage: bool
     smoothing: tuple[float, ...]
     choose: str
+    stack_resamples: int
+    stack_seed: int
     space: str
     spaces: tuple[str, ...]
     thrust_statistic: str
@@ -233,6 +239,8 @@ class RBFSettings:
             log_damage=bool(s["log_damage"]),
             smoothing=_smoothing(s["smoothing"], source),
             choose=str(s["choose"]),
+            stack_resamples=int(s["stack"]["resamples"]),
+            stack_seed=int(s["stack"]["seed"]),
             space=str(s["space"]),
             spaces=tuple(str(v) for v in s["spaces"]),
             thrust_statistic=str(s["thrust"]["statistic"]),
@@ -256,6 +264,11 @@ class RBFSettings:
         if out.choose == "stack" and out.method != "gp":
             raise ValueError(
                 f"{source}: lifecycle.rbf.choose = 'stack' with method {out.method!r}; the blend is the GP's (method: gp)"
+            )
+        if out.stack_resamples and out.choose != "stack":
+            raise ValueError(
+                f"{source}: lifecycle.rbf.stack.resamples = {out.stack_resamples} with choose = {out.choose!r}; "
+                "the resampled weights are the blend's (choose: stack)"
             )
         if out.method == "gp" and out.choose in ("per_output", "stack"):
             if out.gp.thrust:
