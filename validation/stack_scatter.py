@@ -39,8 +39,6 @@ import pandas as pd
 from moorlife import lifecycle
 from moorlife.lifecycle import fit
 
-GRID = fit.STACK_GRID
-
 
 def fit_parts(cfg: dict[str, Any], stores: dict[str, Any]) -> dict[str, Any]:
     """The stack's fit, its two parts whole, and the leave-one-out predictions its weights are taken on."""

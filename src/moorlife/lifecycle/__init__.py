@@ -64,9 +64,6 @@ from moorlife.lifecycle.fit import (
     gp_groups,
     loo_errors_in_units,
     predict_outputs,
-    stack_weights,
-    validation_metrics,
-    validation_r_interval,
 )
 from moorlife.lifecycle.outputs import (
     DEFAULT_OUTPUTS,
@@ -90,6 +87,7 @@ from moorlife.lifecycle.spaces import (
     thrust_curve,
     turbulent_thrust,
 )
+from moorlife.lifecycle.stacking import stack_weights
 from moorlife.lifecycle.uncertainty import (
     band_sigma_of,
     calibrate_coverage,
@@ -99,6 +97,7 @@ from moorlife.lifecycle.uncertainty import (
     suggest_states,
     sum_seed_cv,
 )
+from moorlife.lifecycle.validation import validation_metrics, validation_r_interval
 
 __all__ = [
     "HOURS_PER_YEAR",

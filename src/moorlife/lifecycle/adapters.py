@@ -27,14 +27,11 @@ from moorlife.lifecycle.damage import (
     life_damage,
 )
 from moorlife.lifecycle.fit import (
-    R_INTERVAL_LEVEL,
     Reconstruction,
     fit_outputs,
     gp_input_names,
     loo_errors_in_units,
     predict_outputs,
-    validation_metrics,
-    validation_r_interval,
 )
 from moorlife.lifecycle.outputs import (
     _label,
@@ -47,6 +44,7 @@ from moorlife.lifecycle.sensitivity import corrosion_evolution
 from moorlife.lifecycle.settings import RBFSettings
 from moorlife.lifecycle.spaces import ThrustCoordinate
 from moorlife.lifecycle.uncertainty import band_sigma_of, error_indicator, life_band, suggest_states, sum_seed_cv
+from moorlife.lifecycle.validation import R_INTERVAL_LEVEL, validation_metrics, validation_r_interval
 
 __all__ = [
     "Fitted",

@@ -1,4 +1,4 @@
-"""The RBF of every output column (:func:`fit_outputs`, :func:`predict_outputs`) and its validation metrics.
+"""The RBF of every output column (:func:`fit_outputs`, :func:`predict_outputs`).
 
 Two ways to choose each output's interpolant (``lifecycle.rbf.choose``):
 
@@ -29,13 +29,14 @@ paper space or with the thrust (``gp.thrust``), one :class:`moorlife.gp.GPModel`
 each output keeps the one with the smaller leave-one-out RMS error in its own units: one
 :class:`moorlife.gp.GPModel` per space in use, each of its outputs. ``stack``: the same fits,
 and every output is a weighted blend of the candidates' predictions (stacking), its weight
-chosen from the training states' leave-one-out predictions alone (:func:`stack_weights`).
+chosen from the training states' leave-one-out predictions alone
+(:func:`moorlife.lifecycle.stacking.stack_weights`). The validation metrics are
+:mod:`moorlife.lifecycle.validation`'s.
 """
 
 from __future__ import annotations
 
 import logging
-import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -46,130 +47,17 @@ from moorlife import gp, names, rbf
 from moorlife.lifecycle.outputs import _label
 from moorlife.lifecycle.settings import RBFSettings
 from moorlife.lifecycle.spaces import ThrustCoordinate, space_inputs, space_points, space_trend
+from moorlife.lifecycle.stacking import stack_weights
 from moorlife.space import Space, embed, fit_space
 
 __all__ = [
     "Reconstruction",
-    "validation_metrics",
     "fit_outputs",
     "predict_outputs",
     "loo_errors_in_units",
-    "stack_weights",
 ]
 
 log = logging.getLogger("moorlife.lifecycle")
-
-
-def validation_metrics(predicted: npt.ArrayLike, simulated: npt.ArrayLike) -> dict[str, np.ndarray]:
-    """Per-output agreement of rebuilt and simulated values (paper Figs. 10-13).
-
-    Parameters
-    ----------
-    predicted, simulated : array_like, shape (n, k)
-
-    Returns
-    -------
-    dict
-        ``r`` (Pearson correlation), ``rmse``, ``bias`` (mean of predicted - simulated),
-        ``nrmse`` (RMSE / standard deviation of simulated), ``slope`` and ``intercept``
-        of the least-squares line simulated -> predicted, ``sum_error`` (relative error of
-        the sum, the quantity that matters for life damage); each shape (k,).
-    """
-    p = np.atleast_2d(np.asarray(predicted, dtype=float).T).T
-    s = np.atleast_2d(np.asarray(simulated, dtype=float).T).T
-    if p.shape != s.shape:
-        raise ValueError(f"predicted {p.shape} and simulated {s.shape} differ in shape")
-    pc = p - p.mean(axis=0)
-    sc = s - s.mean(axis=0)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        r = (pc * sc).sum(axis=0) / np.sqrt((pc**2).sum(axis=0) * (sc**2).sum(axis=0))
-        slope = (pc * sc).sum(axis=0) / (sc**2).sum(axis=0)
-        nrmse = np.sqrt(np.mean((p - s) ** 2, axis=0)) / s.std(axis=0)
-        sum_err = p.sum(axis=0) / s.sum(axis=0) - 1.0
-    return {
-        "r": r,
-        "rmse": np.sqrt(np.mean((p - s) ** 2, axis=0)),
-        "bias": np.mean(p - s, axis=0),
-        "nrmse": nrmse,
-        "slope": slope,
-        "intercept": p.mean(axis=0) - slope * s.mean(axis=0),
-        "sum_error": sum_err,
-    }
-
-
-#: Resamples, confidence level and seed of :func:`validation_r_interval`.
-R_INTERVAL_RESAMPLES = 2000
-R_INTERVAL_LEVEL = 0.90
-R_INTERVAL_SEED = 0
-
-
-def validation_r_interval(
-    predicted: npt.ArrayLike,
-    simulated: npt.ArrayLike,
-    *,
-    level: float = R_INTERVAL_LEVEL,
-    n_resamples: int = R_INTERVAL_RESAMPLES,
-    seed: int = R_INTERVAL_SEED,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The sampling precision of each output's validation r: its bootstrap interval over the states.
-
-    The validation states are a sample of the hindcast's hours, and a light line's r rests on its
-    few largest states, so ``r`` from 225 states carries a sampling scatter. The states are
-    resampled in pairs (predicted with simulated, every output with the same draws;
-    :func:`scipy.stats.bootstrap`, ``paired=True``), and the bias-corrected and accelerated (BCa)
-    interval of the Pearson r is returned with the bootstrap standard error. Deterministic: the
-    draws come from ``seed`` alone.
-
-    Parameters
-    ----------
-    predicted, simulated : array_like, shape (n, k)
-    level : float
-        Confidence level of the two-sided interval.
-    n_resamples : int
-    seed : int
-
-    Returns
-    -------
-    low, high, standard_error : numpy.ndarray, shape (k,)
-        NaN for an output whose simulated or predicted values are constant (r undefined).
-    """
-    from scipy.stats import DegenerateDataWarning, bootstrap
-
-    p = np.atleast_2d(np.asarray(predicted, dtype=float).T).T
-    s = np.atleast_2d(np.asarray(simulated, dtype=float).T).T
-    if p.shape != s.shape:
-        raise ValueError(f"predicted {p.shape} and simulated {s.shape} differ in shape")
-    if not 0.0 < level < 1.0:
-        raise ValueError(f"validation_r_interval: level must be in (0, 1), got {level}")
-    out = np.full((3, p.shape[1]), np.nan)
-    ok = (np.ptp(p, axis=0) > 0) & (np.ptp(s, axis=0) > 0) & np.isfinite(p).all(axis=0) & np.isfinite(s).all(axis=0)
-    if p.shape[0] < 3 or not ok.any():
-        return out[0], out[1], out[2]
-
-    def pearson(a: np.ndarray, b: np.ndarray, axis: int = -1) -> np.ndarray:
-        ac = a - a.mean(axis=axis, keepdims=True)
-        bc = b - b.mean(axis=axis, keepdims=True)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            return (ac * bc).sum(axis=axis) / np.sqrt((ac * ac).sum(axis=axis) * (bc * bc).sum(axis=axis))
-
-    with warnings.catch_warnings():  # a degenerate resample distribution (r = 1 exactly): handled below
-        warnings.simplefilter("ignore", DegenerateDataWarning)
-        warnings.simplefilter("ignore", RuntimeWarning)
-        res = bootstrap(
-            (p[:, ok].T, s[:, ok].T),
-            pearson,
-            paired=True,
-            vectorized=True,
-            n_resamples=n_resamples,
-            confidence_level=level,
-            method="BCa",
-            axis=-1,
-            rng=np.random.default_rng(seed),
-        )
-    out[:, ok] = res.confidence_interval.low, res.confidence_interval.high, res.standard_error
-    flat = ok & ~np.isfinite(out[0])  # every resample the same r: the interval is that r
-    out[0, flat] = out[1, flat] = pearson(p[:, flat].T, s[:, flat].T)
-    return out[0], out[1], out[2]
 
 
 @dataclass(frozen=True)
@@ -671,98 +559,6 @@ def _fit_gp(
         method="gp",
         indicator=g.indicator,
     )
-
-
-#: The weights of the first candidate tried by :func:`stack_weights`, first to last (a tie keeps
-#: the earlier): 1, 0.95, ..., 0.
-STACK_GRID = np.linspace(1.0, 0.0, 21)
-
-
-def stack_weights(
-    values: npt.ArrayLike,
-    loo_a: npt.ArrayLike,
-    loo_b: npt.ArrayLike,
-    log_output: npt.ArrayLike,
-    grid: npt.ArrayLike = STACK_GRID,
-    *,
-    resamples: int = 0,
-    seed: int = 0,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Per output, the weight of two interpolants' blend with the smallest leave-one-out RMS error.
-
-    Stacking (Breiman 1996, "Stacked regressions"): the blend ``w a + (1 - w) b`` of the two
-    predictions, arithmetic for a linear output and geometric (``a**w b**(1 - w)``, arithmetic in
-    ``log10``) for a ``log10`` one, scored in the output's own units on the leave-one-out
-    predictions of the training states alone. ``w`` 1 or 0 is the choice of one candidate
-    (``choose: per_output``), so the blend's leave-one-out error is never larger than it.
-
-    With ``resamples`` N > 0 the weight is instead the mean, rounded to 0.01, of that choice over
-    N bootstrap resamples of the training states (bootstrap model averaging, Buckland, Burnham
-    and Augustin 1997): a preference of the leave-one-out that is within its own sampling
-    scatter gives a mixed weight rather than one candidate whole. An output where some weight of
-    the grid has no finite error on all states keeps the choice on all states.
-
-    Parameters
-    ----------
-    values : array_like, shape (m, n_out)
-        The training values (a ``log10`` output's non-positive values floored as for its fit).
-    loo_a, loo_b : array_like, shape (m, n_out)
-        Each candidate's leave-one-out prediction of every training state, back-transformed
-        (positive for a ``log10`` output).
-    log_output : array_like of bool, shape (n_out,)
-    grid : array_like
-        The weights of ``a`` tried, in order; the first on a tie.
-    resamples : int
-        Bootstrap resamples of the training states (0: none).
-    seed : int
-        Seed of the resamples.
-
-    Returns
-    -------
-    weight : numpy.ndarray, shape (n_out,)
-        The weight of ``a``.
-    rmse : numpy.ndarray, shape (n_out,)
-        The blend's leave-one-out RMS error in units at that weight, on all training states (inf
-        where no weight gives a finite one).
-    """
-    y = np.asarray(values, dtype=float)
-    a, b = np.asarray(loo_a, dtype=float), np.asarray(loo_b, dtype=float)
-    logs = np.asarray(log_output, dtype=bool)
-    w = np.asarray(grid, dtype=float)
-    if y.shape != a.shape or y.shape != b.shape or logs.shape != y.shape[1:]:
-        raise ValueError(f"stack_weights: values {y.shape}, loo_a {a.shape}, loo_b {b.shape}, log_output {logs.shape}")
-    if resamples < 0:
-        raise ValueError(f"stack_weights: resamples must be >= 0, got {resamples}")
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        ta, tb = a.copy(), b.copy()
-        ta[:, logs], tb[:, logs] = np.log10(a[:, logs]), np.log10(b[:, logs])
-    rmse = _blend_rmse(y, ta, tb, logs, w[:, None] * np.ones(y.shape[1]))
-    best = np.argmin(rmse, axis=0)
-    weight, score = w[best], rmse[best, np.arange(y.shape[1])]
-    if resamples:
-        bag = np.isfinite(rmse).all(axis=0)
-        rng = np.random.default_rng(seed)
-        chosen = np.empty((resamples, y.shape[1]))
-        for k in range(resamples):
-            i = rng.integers(0, y.shape[0], y.shape[0])
-            chosen[k] = w[np.argmin(_blend_rmse(y[i], ta[i], tb[i], logs, w[:, None] * np.ones(y.shape[1])), axis=0)]
-        weight = np.where(bag, np.round(chosen.mean(axis=0), 2), weight)
-        score = np.where(bag, _blend_rmse(y, ta, tb, logs, weight[None, :])[0], score)
-    return weight, score
-
-
-def _blend_rmse(y: np.ndarray, ta: np.ndarray, tb: np.ndarray, logs: np.ndarray, weights: np.ndarray) -> np.ndarray:
-    """The RMS error in units of the blends ``weights`` (k, n_out) of ``ta`` and ``tb`` (interpolated
-    values; ``log10`` for the ``logs`` columns): shape (k, n_out), inf where not finite."""
-    rmse = np.empty(weights.shape)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        for k, wk in enumerate(weights):
-            t = np.where((wk > 0.0) & (wk < 1.0), wk * ta + (1.0 - wk) * tb, np.where(wk >= 1.0, ta, tb))
-            p = t.copy()
-            p[:, logs] = 10.0 ** t[:, logs]
-            e = y - p
-            rmse[k] = np.sqrt(np.mean(e * e, axis=0))
-    return np.where(np.isfinite(rmse), rmse, np.inf)
 
 
 def _stack_gp(
