@@ -38,6 +38,7 @@ import pandas as pd
 
 from moorlife import lifecycle
 from moorlife.lifecycle import fit
+from moorlife.lifecycle.validation import pearson_r
 
 
 def fit_parts(cfg: dict[str, Any], stores: dict[str, Any]) -> dict[str, Any]:
@@ -85,13 +86,6 @@ def blend(a: np.ndarray, b: np.ndarray, w: np.ndarray, logs: np.ndarray) -> np.n
     return np.where(logs, geo, w * a + (1.0 - w) * b)
 
 
-def corr(p: np.ndarray, s: np.ndarray) -> np.ndarray:
-    """Pearson r per column, over axis -2 (any leading axes are resamples)."""
-    pc = p - p.mean(axis=-2, keepdims=True)
-    sc = s - s.mean(axis=-2, keepdims=True)
-    return (pc * sc).sum(axis=-2) / np.sqrt((pc**2).sum(axis=-2) * (sc**2).sum(axis=-2))
-
-
 def scatter(parts: dict[str, Any], boot_train: int, boot_valid: int, seed: int) -> pd.DataFrame:
     """Per output: the weight's and the validation r's bootstrap figures (see the module's text)."""
     y, la, lb, logs = (np.asarray(v) for v in parts["loo"])
@@ -112,7 +106,7 @@ def scatter(parts: dict[str, Any], boot_train: int, boot_valid: int, seed: int) 
         raise SystemExit("stack_scatter.py: the blend of the parts is not the stack's prediction")
     n = s.shape[0]
     j = rng.integers(0, n, (boot_valid, n))
-    rb = {k: corr(p[j], s[j]) for k, p in pred.items()}  # (boot_valid, n_out)
+    rb = {k: pearson_r(p[j], s[j], axis=-2) for k, p in pred.items()}  # (boot_valid, n_out)
     out = pd.DataFrame(index=parts["labels"])
     out["w"] = w_all
     out["P(w=1)"] = (ws >= 1.0).mean(axis=0)
@@ -121,7 +115,7 @@ def scatter(parts: dict[str, Any], boot_train: int, boot_valid: int, seed: int) 
     out["w_sd"] = ws.std(axis=0)
     out["loo_z"] = d_all / dz.std(axis=0)  # < 0: a's leave-one-out RMS is smaller
     for k, p in pred.items():
-        out[f"r_{k}"] = corr(p, s)
+        out[f"r_{k}"] = pearson_r(p, s, axis=0)
     out["r_stack_sd"] = rb["stack"].std(axis=0)
     out["P(r_stack>=0.98)"] = (rb["stack"] >= 0.98).mean(axis=0)
     out["r_bagged_sd"] = rb["bagged"].std(axis=0)

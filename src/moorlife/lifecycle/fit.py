@@ -572,8 +572,8 @@ def _stack_gp(
     space: Space,
     centres: np.ndarray,
     indicator: str,
-    resamples: int = 0,
-    seed: int = 0,
+    resamples: int,
+    seed: int,
 ) -> Reconstruction:
     """``choose: stack`` with ``method: gp``: every output blended from the two candidate spaces'
     GPs (``fits``: each GP and its leave-one-out residuals in units, :func:`_gp_in`), with the

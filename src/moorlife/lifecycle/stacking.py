@@ -71,7 +71,8 @@ def stack_weights(
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         ta, tb = a.copy(), b.copy()
         ta[:, logs], tb[:, logs] = np.log10(a[:, logs]), np.log10(b[:, logs])
-    rmse = _blend_rmse(y, ta, tb, logs, w[:, None] * np.ones(y.shape[1]))
+    tried = np.repeat(w[:, None], y.shape[1], axis=1)  # every grid weight for every output
+    rmse = _blend_rmse(y, ta, tb, logs, tried)
     best = np.argmin(rmse, axis=0)
     weight, score = w[best], rmse[best, np.arange(y.shape[1])]
     if resamples:
@@ -80,7 +81,7 @@ def stack_weights(
         chosen = np.empty((resamples, y.shape[1]))
         for k in range(resamples):
             i = rng.integers(0, y.shape[0], y.shape[0])
-            chosen[k] = w[np.argmin(_blend_rmse(y[i], ta[i], tb[i], logs, w[:, None] * np.ones(y.shape[1])), axis=0)]
+            chosen[k] = w[np.argmin(_blend_rmse(y[i], ta[i], tb[i], logs, tried), axis=0)]
         weight = np.where(bag, np.round(chosen.mean(axis=0), 2), weight)
         score = np.where(bag, _blend_rmse(y, ta, tb, logs, weight[None, :])[0], score)
     return weight, score

@@ -7,7 +7,7 @@ import warnings
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["R_INTERVAL_LEVEL", "validation_metrics", "validation_r_interval"]
+__all__ = ["R_INTERVAL_LEVEL", "pearson_r", "validation_metrics", "validation_r_interval"]
 
 
 def validation_metrics(predicted: npt.ArrayLike, simulated: npt.ArrayLike) -> dict[str, np.ndarray]:
@@ -45,6 +45,15 @@ def validation_metrics(predicted: npt.ArrayLike, simulated: npt.ArrayLike) -> di
         "intercept": p.mean(axis=0) - slope * s.mean(axis=0),
         "sum_error": sum_err,
     }
+
+
+def pearson_r(a: np.ndarray, b: np.ndarray, axis: int = -1) -> np.ndarray:
+    """Pearson r of ``a`` and ``b`` along ``axis``, every other axis kept (resamples, outputs);
+    NaN where either is constant. The ``r`` of :func:`validation_metrics` along axis 0."""
+    ac = a - a.mean(axis=axis, keepdims=True)
+    bc = b - b.mean(axis=axis, keepdims=True)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return (ac * bc).sum(axis=axis) / np.sqrt((ac * ac).sum(axis=axis) * (bc * bc).sum(axis=axis))
 
 
 #: Resamples, confidence level and seed of :func:`validation_r_interval`.
@@ -96,18 +105,12 @@ def validation_r_interval(
     if p.shape[0] < 3 or not ok.any():
         return out[0], out[1], out[2]
 
-    def pearson(a: np.ndarray, b: np.ndarray, axis: int = -1) -> np.ndarray:
-        ac = a - a.mean(axis=axis, keepdims=True)
-        bc = b - b.mean(axis=axis, keepdims=True)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            return (ac * bc).sum(axis=axis) / np.sqrt((ac * ac).sum(axis=axis) * (bc * bc).sum(axis=axis))
-
     with warnings.catch_warnings():  # a degenerate resample distribution (r = 1 exactly): handled below
         warnings.simplefilter("ignore", DegenerateDataWarning)
         warnings.simplefilter("ignore", RuntimeWarning)
         res = bootstrap(
             (p[:, ok].T, s[:, ok].T),
-            pearson,
+            pearson_r,
             paired=True,
             vectorized=True,
             n_resamples=n_resamples,
@@ -118,5 +121,5 @@ def validation_r_interval(
         )
     out[:, ok] = res.confidence_interval.low, res.confidence_interval.high, res.standard_error
     flat = ok & ~np.isfinite(out[0])  # every resample the same r: the interval is that r
-    out[0, flat] = out[1, flat] = pearson(p[:, flat].T, s[:, flat].T)
+    out[0, flat] = out[1, flat] = pearson_r(p[:, flat].T, s[:, flat].T)
     return out[0], out[1], out[2]

@@ -13,6 +13,7 @@ import xarray as xr
 from moorlife import lifecycle as lc_mod
 from moorlife import names
 from moorlife.io import open_zarr, save_figure, write_zarr
+from moorlife.lifecycle.validation import R_INTERVAL_LEVEL
 from moorlife.selection.replicates import average_replicates
 from moorlife.selection.rounds import annotate_lifecycle
 from moorlife.settings import fill_section
@@ -122,7 +123,9 @@ def run(
             low, high = ds["validation_r_low"], ds["validation_r_high"]
             rows = zip(ds["output"].values, low.values, high.values)
             interval = {str(o): (round(float(a), 4), round(float(b), 4)) for o, a, b in rows}
-            logger.info("validation r, %s: %s", low.attrs["long_name"].removeprefix("lower bound of the "), interval)
+            logger.info(
+                "validation r, %s BCa bootstrap interval over the states: %s", f"{R_INTERVAL_LEVEL:.0%}", interval
+            )
         if "lifecycle_damage" in ds:
             logger.info("life-cycle damage (curve x line):\n%s", ds["lifecycle_damage"].to_pandas())
         chunks = {names.TIME: min(ds.sizes[names.TIME], 65536)}
