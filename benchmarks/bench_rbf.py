@@ -130,6 +130,9 @@ def main() -> None:
     ap.add_argument("--choice-only", action="store_true", help="run section 5 only (lifecycle.rbf.choose)")
     ap.add_argument("--noise", action="store_true", help="add seed-like lognormal noise to every simulated value")
     ap.add_argument("--gp-variants", action="store_true", help="section 5: also the GP's other settings")
+    ap.add_argument(
+        "--only", default="", help="section 5: only the variants whose name has this text (and the default)"
+    )
     args = ap.parse_args()
 
     pts = hindcast_points()
@@ -150,7 +153,7 @@ def main() -> None:
     # warm up the numba kernels (compilation is cached, not part of the measurement)
     rbf.predict_rbf(rbf.fit_rbf(pts[train[:50]], y[:50, :2], is_direction=MASK, shape=0.2), pts[:100])
     if args.choice_only:
-        choice_section(pts, train, valid, y, y_val, labels, lo, span, args.gp_variants)
+        choice_section(pts, train, valid, y, y_val, labels, lo, span, args.gp_variants, args.only)
         return
 
     # 1. ours at paper scale
@@ -271,14 +274,16 @@ def main() -> None:
         print(f"{k}: validation damage sum error {np.round(100 * (p / tot_true - 1), 2)} %")
 
 
-def choice_section(pts, train, valid, y, y_val, labels, lo, span, gp_variants=False) -> None:
+def choice_section(pts, train, valid, y, y_val, labels, lo, span, gp_variants=False, only="") -> None:
     """5. lifecycle.rbf.choose: global (the default) vs per_output vs the GP, cost and quality, same run."""
     from pathlib import Path
 
-    from moorlife import lifecycle
-    from moorlife.io import read_yaml
+    from moorlife import lifecycle, stages
+    from moorlife.io import read_study_config, read_yaml
 
-    curve = lifecycle.thrust_curve(read_yaml(Path(__file__).resolve().parents[1] / "config/platform.yaml"))
+    root = Path(__file__).resolve().parents[1]
+    curve = lifecycle.thrust_curve(read_yaml(root / "config/platform.yaml"))
+    study = read_study_config(root / "config/config.yaml", (), schema=root / "workflow/schemas/config.schema.yaml")
     # (variable, line) as the lifecycle names them: tension_mpm_M1 -> (tension_mpm, M1)
     cols = [tuple(lab.rsplit("_", 1)) if lab[-2:-1] == "M" else (lab, None) for lab in labels]
     is_dmg = np.array([lab.startswith("damage") for lab in labels])
@@ -314,14 +319,27 @@ def choice_section(pts, train, valid, y, y_val, labels, lo, span, gp_variants=Fa
                     "method": "gp",
                     "gp": {"covariance": "matern52", "wind_term": "damage", "wind_start": "frozen"},
                 },
+                # validation/overlays/gp_matern52_wind_all_frozen_sdT_stack_bagged.yaml
+                "gp stack, bagged": {
+                    "method": "gp",
+                    "choose": "stack",
+                    "stack": {"resamples": 500, "seed": 0},
+                    "spaces": ["paper", "thrust"],
+                    "thrust": {"statistic": "turbulent_sd"},
+                    "gp": {"covariance": "matern52", "wind_term": "all", "wind_start": "frozen"},
+                },
             }
         )
+    variants = {k: v for i, (k, v) in enumerate(variants.items()) if i == 0 or only in k}
     table = {}
     base = None
     print("\n[5. lifecycle.rbf.choose] fit 1,000 + predict every hour x 16 outputs")
     for name, cfg in variants.items():
         st = lifecycle.RBFSettings.from_config(cfg)
-        model, t_fit, c_fit = timed(lifecycle.fit_outputs, pts[train], y, cols, st, lo=lo, span=span, thrust=curve)
+        thrust = curve
+        if st.thrust_statistic != "steady":
+            thrust = stages.thrust_for(st, root / "config/platform.yaml", study["simulation"]["wind"])
+        model, t_fit, c_fit = timed(lifecycle.fit_outputs, pts[train], y, cols, st, lo=lo, span=span, thrust=thrust)
         pred, t_pred, c_pred = timed(lifecycle.predict_outputs, model, pts, chunk_rows=st.chunk_rows)
         total = c_fit + c_pred
         base = total if base is None else base
