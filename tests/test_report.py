@@ -101,3 +101,27 @@ def test_report_descriptions_render(name, rounds, tmp_path, monkeypatch, study_c
         assert ("2 adaptive round(s) of 100 per system" in html) == (rounds == 2)
     else:
         assert "has not run yet" in html
+
+
+@pytest.mark.parametrize(("attrs", "method"), [({}, "RBF"), ({"rbf_method": "gp"}, "GP")])
+def test_validation_figure_names_the_reconstruction(attrs, method):
+    """The validation figure's title says which reconstruction was validated: the RBF of the paper
+    (no ``rbf_method`` attribute, as the default study's store) or the GP."""
+    import numpy as np
+    import xarray as xr
+
+    from moorlife.plots.lifecycle import validation_scatter
+
+    outputs = ["surge_mpm", "damage_sn/M1"]
+    sim = np.random.default_rng(0).lognormal(size=(6, 2))
+    ds = xr.Dataset(
+        {
+            "validation_simulated": (("validate", "output"), sim),
+            "validation_predicted": (("validate", "output"), 1.1 * sim),
+            "validation_r": ("output", [0.99, 0.98]),
+        },
+        coords={"output": outputs},
+        attrs=attrs,
+    )
+    title = validation_scatter(ds, "MS1").get_suptitle()
+    assert title == f"MS1 {method} validation on 6 states not used for fitting"

@@ -73,7 +73,8 @@ def validation_scatter(ds: xr.Dataset, title: str = "") -> Figure:
     ds : xarray.Dataset
         ``lifecycle.zarr`` (``validation_predicted``, ``validation_simulated`` on
         (``validate``, ``output``), ``validation_r``, ``validation_rmse``; ``validation_r_low``
-        and ``validation_r_high``, the bootstrap interval, when present).
+        and ``validation_r_high``, the bootstrap interval, when present). The figure's title names
+        the reconstruction: the GP where the attribute ``rbf_method`` is ``gp``, else the RBF.
     title : str
     """
     labels = [str(o) for o in ds["output"].values if str(o).split("/")[0] in CONTRACT_OUTPUTS]
@@ -99,7 +100,9 @@ def validation_scatter(ds: xr.Dataset, title: str = "") -> Figure:
         ax.tick_params(labelsize=6)
         ax.ticklabel_format(axis="both", style="sci", scilimits=(-3, 4))
     axes[0].legend(fontsize=6)
-    fig.suptitle(f"{title} RBF validation on {ds.sizes.get('validate', 0)} states not used for fitting".strip())
+    method = "GP" if ds.attrs.get("rbf_method") == "gp" else "RBF"  # the attribute is written for the GP only
+    n = ds.sizes.get("validate", 0)
+    fig.suptitle(f"{title} {method} validation on {n} states not used for fitting".strip())
     return fig
 
 
