@@ -89,6 +89,36 @@ def study_config_factory():
     return study_config_with
 
 
+#: One short coupled simulation of each line kind (the kernels of the tiny study's simulations).
+_WARM = """
+import sys
+import numpy as np
+sys.path.insert(0, {tests!r})
+import test_simulate as T
+from moorlife import simulate as sim
+for kind in ("dynamic", "quasistatic"):
+    sim.simulate_batch(T.sea(1), case_ids=np.array([0]), mooring_system="MS3", seed=1, model_inputs=T.moored("MS3", kind),
+                       sim_cfg={{**T.SIM, "duration": 60.0, "transient": 10.0}}, fatigue_cfg={{}},
+                       stats_cfg={{"block": 10.0, "method": "lmoments"}})
+"""
+
+
+def _warm_numba_cache() -> None:
+    """Compile the simulation kernels into the package's Numba cache before the study's jobs run.
+
+    The study runs two jobs at a time (``smk``'s ``--max-threads 1``), and on a cold cache (a fresh
+    clone) its first two simulation jobs would each compile the same kernels (about 50 CPU-s
+    each) at once. Compiled here once, in a child process (the cache directory every process of
+    this source derives, :mod:`moorlife._numba_cache`), they are loaded by both. The numbers do
+    not depend on it (``tests/test_numba_cache.py``)."""
+    import subprocess
+    import sys
+
+    script = _WARM.format(tests=str(Path(__file__).parent))
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr[-3000:]
+
+
 @pytest.fixture(scope="session")
 def study(tmp_path_factory) -> Path:
     """The tiny study (``config/quick.yaml`` + ``tests/data/tiny.yaml``), the full DAG built once
@@ -109,6 +139,7 @@ def study(tmp_path_factory) -> Path:
                 shutil.rmtree(work)
             work.mkdir()
             copy_repo(work)
+            _warm_numba_cache()
             smk(work)
             built.touch()
     return work
