@@ -89,18 +89,8 @@ def study_config_factory():
     return study_config_with
 
 
-#: One short coupled simulation of each line kind (the kernels of the tiny study's simulations).
-_WARM = """
-import sys
-import numpy as np
-sys.path.insert(0, {tests!r})
-import test_simulate as T
-from moorlife import simulate as sim
-for kind in ("dynamic", "quasistatic"):
-    sim.simulate_batch(T.sea(1), case_ids=np.array([0]), mooring_system="MS3", seed=1, model_inputs=T.moored("MS3", kind),
-                       sim_cfg={{**T.SIM, "duration": 60.0, "transient": 10.0}}, fatigue_cfg={{}},
-                       stats_cfg={{"block": 10.0, "method": "lmoments"}})
-"""
+#: Short coupled simulations of each line kind (the kernels of the tiny study's simulations).
+_WARM = "import sys; sys.path.insert(0, {tests!r}); import test_simulate; test_simulate.short_coupled_runs()"
 
 
 def _warm_numba_cache() -> None:

@@ -36,13 +36,8 @@ import hashlib, sys
 import numpy as np
 sys.path.insert(0, {tests!r})
 import test_simulate as T
-from moorlife import simulate as sim
 h = hashlib.sha256()
-for kind in ("dynamic", "quasistatic"):
-    m = T.moored("MS3", kind)
-    out = sim.simulate_batch(T.sea(2), case_ids=np.array([3, 4]), mooring_system="MS3", seed=5, model_inputs=m,
-                             sim_cfg={{**T.SIM, "duration": 60.0, "transient": 10.0}}, fatigue_cfg={{}},
-                             stats_cfg={{"block": 10.0, "method": "lmoments"}})
+for out in T.short_coupled_runs("MS3").values():
     for k in sorted(out):
         v = np.asarray(out[k])
         if v.dtype.kind in "fiu":

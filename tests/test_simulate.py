@@ -287,6 +287,26 @@ def sea(n, **kw):
     return {k: np.asarray(v[:n], dtype=float) for k, v in base.items()}
 
 
+def short_coupled_runs(ms="MS3"):
+    """Two states, 60 s records, for each line kind (dynamic, then quasi-static): every kernel of a
+    coupled simulation, compiled and run (``tests/test_numba_cache.py``, and the warm-up of the
+    tiny study in ``conftest.py``)."""
+    cfg = {**SIM, "duration": 60.0, "transient": 10.0}
+    return {
+        kind: sim.simulate_batch(
+            sea(2),
+            case_ids=np.array([3, 4]),
+            mooring_system=ms,
+            seed=5,
+            model_inputs=moored(ms, kind),
+            sim_cfg=cfg,
+            fatigue_cfg={},
+            stats_cfg={"block": 10.0, "method": "lmoments"},
+        )
+        for kind in ("dynamic", "quasistatic")
+    }
+
+
 def test_batch_is_bit_identical_to_single_cases(ms3):
     kw = dict(mooring_system="MS3", seed=5, model_inputs=ms3, sim_cfg=SIM, fatigue_cfg={}, stats_cfg=STATS)
     both = sim.simulate_batch(sea(3), case_ids=np.array([10, 11, 12]), **kw)
