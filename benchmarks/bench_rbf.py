@@ -279,10 +279,9 @@ def choice_section(pts, train, valid, y, y_val, labels, lo, span, gp_variants=Fa
     from pathlib import Path
 
     from moorlife import lifecycle, stages
-    from moorlife.io import read_study_config, read_yaml
+    from moorlife.io import read_study_config
 
     root = Path(__file__).resolve().parents[1]
-    curve = lifecycle.thrust_curve(read_yaml(root / "config/platform.yaml"))
     study = read_study_config(root / "config/config.yaml", (), schema=root / "workflow/schemas/config.schema.yaml")
     # (variable, line) as the lifecycle names them: tension_mpm_M1 -> (tension_mpm, M1)
     cols = [tuple(lab.rsplit("_", 1)) if lab[-2:-1] == "M" else (lab, None) for lab in labels]
@@ -336,9 +335,8 @@ def choice_section(pts, train, valid, y, y_val, labels, lo, span, gp_variants=Fa
     print("\n[5. lifecycle.rbf.choose] fit 1,000 + predict every hour x 16 outputs")
     for name, cfg in variants.items():
         st = lifecycle.RBFSettings.from_config(cfg)
-        thrust = curve
-        if st.thrust_statistic != "steady":
-            thrust = stages.thrust_for(st, root / "config/platform.yaml", study["simulation"]["wind"])
+        # the thrust coordinate as the lifecycle stage builds it (None where no space needs it)
+        thrust = stages.thrust_for(st, root / "config/platform.yaml", study["simulation"]["wind"])
         model, t_fit, c_fit = timed(lifecycle.fit_outputs, pts[train], y, cols, st, lo=lo, span=span, thrust=thrust)
         pred, t_pred, c_pred = timed(lifecycle.predict_outputs, model, pts, chunk_rows=st.chunk_rows)
         total = c_fit + c_pred
