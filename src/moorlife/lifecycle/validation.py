@@ -34,11 +34,12 @@ def validation_metrics(predicted: npt.ArrayLike, simulated: npt.ArrayLike) -> di
     with np.errstate(invalid="ignore", divide="ignore"):
         r = (pc * sc).sum(axis=0) / np.sqrt((pc**2).sum(axis=0) * (sc**2).sum(axis=0))
         slope = (pc * sc).sum(axis=0) / (sc**2).sum(axis=0)
-        nrmse = np.sqrt(np.mean((p - s) ** 2, axis=0)) / s.std(axis=0)
+        rmse = np.sqrt(np.mean((p - s) ** 2, axis=0))
+        nrmse = rmse / s.std(axis=0)
         sum_err = p.sum(axis=0) / s.sum(axis=0) - 1.0
     return {
         "r": r,
-        "rmse": np.sqrt(np.mean((p - s) ** 2, axis=0)),
+        "rmse": rmse,
         "bias": np.mean(p - s, axis=0),
         "nrmse": nrmse,
         "slope": slope,
